@@ -1,0 +1,234 @@
+//! Configuration of a [`WindField`](super::WindField) and its validation.
+
+use bevy::math::Vec2;
+use bevy::reflect::Reflect;
+use thiserror::Error;
+
+/// Where the turbulence lives in space.
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+pub enum SpatialMode {
+    /// One horizontal 2-D field at the reference height, carried to other heights by the log-law
+    /// ratio of eq. 14 (free-fall paper). Cheap: the paper's choice for real time.
+    Plane,
+    /// A full 3-D volume of `vertical_nodes` layers from the ground up, periodic vertically too.
+    Volume {
+        /// Grid nodes along Y.
+        vertical_nodes: usize,
+    },
+}
+
+/// How the turbulence changes in time.
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+pub enum TemporalMode {
+    /// Taylor's frozen turbulence: the pattern only translates with the mean wind.
+    Frozen,
+    /// The pattern translates and also evolves, read from a noise field with one more (time)
+    /// dimension that is periodic, so it never runs out.
+    Evolving {
+        /// Grid nodes along the time axis.
+        samples: usize,
+        /// Seconds after which the evolution repeats.
+        period: f32,
+    },
+}
+
+/// Everything that defines a [`WindField`](super::WindField). Y is up.
+///
+/// | field | unit | default | meaning |
+/// |---|---|---|---|
+/// | `reference_speed` | m/s | 4.0 | mean wind speed U(h_ref) (a gentle breeze) |
+/// | `reference_height` | m | 10.0 | h_ref, where `reference_speed` holds (standard 10 m) |
+/// | `roughness` | m | 0.3 | z0 of the log law (0.3: scattered trees, the paper's value) |
+/// | `direction` | – | (1, 0) | horizontal direction (x, z) the wind blows toward |
+/// | `beta` | – | 5/3 | spectral exponent (Kolmogorov) |
+/// | `turbulence_intensity` | – | `None` | σ_u / U(h_ref); `None` is 1/ln(h_ref/z0), i.e. σ_u = u*/κ ≈ 2.5 u* |
+/// | `spatial` | – | `Plane` | [`SpatialMode`] |
+/// | `temporal` | – | `Frozen` | [`TemporalMode`] |
+/// | `grid` | nodes | [128, 128] | horizontal nodes along x and z |
+/// | `cell_size` | m | 1.0 | distance between grid nodes |
+/// | `seed` | – | 0 | seed of the turbulence |
+#[derive(Clone, Debug, PartialEq, Reflect)]
+pub struct WindConfig {
+    /// Mean wind speed at `reference_height`, m/s.
+    pub reference_speed: f32,
+    /// Height where `reference_speed` is given, m.
+    pub reference_height: f32,
+    /// Roughness length z0, m.
+    pub roughness: f32,
+    /// Horizontal direction (x, z) the wind blows toward; need not be normalised.
+    pub direction: Vec2,
+    /// Spectral exponent β of the turbulence.
+    pub beta: f32,
+    /// σ_u / U(h_ref); `None` for the surface-layer value 1/ln(h_ref/z0).
+    pub turbulence_intensity: Option<f32>,
+    /// 2-D plane or 3-D volume.
+    pub spatial: SpatialMode,
+    /// Frozen or evolving.
+    pub temporal: TemporalMode,
+    /// Horizontal grid nodes along x and z.
+    pub grid: [usize; 2],
+    /// Distance between neighbouring grid nodes, m.
+    pub cell_size: f32,
+    /// Seed of the turbulence.
+    pub seed: u64,
+}
+
+impl Default for WindConfig {
+    fn default() -> Self {
+        Self {
+            reference_speed: 4.0,
+            reference_height: 10.0,
+            roughness: 0.3,
+            direction: Vec2::X,
+            beta: 5.0 / 3.0,
+            turbulence_intensity: None,
+            spatial: SpatialMode::Plane,
+            temporal: TemporalMode::Frozen,
+            grid: [128, 128],
+            cell_size: 1.0,
+            seed: 0,
+        }
+    }
+}
+
+/// Largest grid (including the time axis) a field may have: 2^26 nodes, 768 MiB of samples.
+pub const MAX_NODES: usize = 1 << 26;
+
+/// A [`WindConfig`] field that is out of range. [`WindError::field`] names it.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum WindError {
+    /// A number outside its valid range.
+    #[error("`{field}` = {value}: {reason}")]
+    Invalid {
+        /// The field's name, as in [`WindConfig`].
+        field: &'static str,
+        /// The rejected value.
+        value: f32,
+        /// What the value must be.
+        reason: &'static str,
+    },
+    /// A grid axis with fewer than two nodes.
+    #[error("`{field}` = {len}: a grid axis needs at least 2 nodes")]
+    GridAxis {
+        /// The field's name.
+        field: &'static str,
+        /// The rejected node count.
+        len: usize,
+    },
+    /// More nodes than [`MAX_NODES`].
+    #[error("`{field}`: {nodes} nodes in all, more than the limit of {MAX_NODES}")]
+    TooManyNodes {
+        /// The field's name.
+        field: &'static str,
+        /// The node count asked for.
+        nodes: usize,
+    },
+}
+
+impl WindError {
+    /// Name of the offending [`WindConfig`] field (`"roughness"`, `"grid.x"`, ...).
+    pub fn field(&self) -> &'static str {
+        match self {
+            Self::Invalid { field, .. } | Self::GridAxis { field, .. } => field,
+            Self::TooManyNodes { field, .. } => field,
+        }
+    }
+}
+
+fn check(ok: bool, field: &'static str, value: f32, reason: &'static str) -> Result<(), WindError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(WindError::Invalid {
+            field,
+            value,
+            reason,
+        })
+    }
+}
+
+fn check_axis(field: &'static str, len: usize) -> Result<(), WindError> {
+    if len >= 2 {
+        Ok(())
+    } else {
+        Err(WindError::GridAxis { field, len })
+    }
+}
+
+impl WindConfig {
+    /// Checks every field; the first bad one is returned.
+    pub fn validate(&self) -> Result<(), WindError> {
+        let z0 = self.roughness;
+        check(
+            z0.is_finite() && z0 > 0.0,
+            "roughness",
+            z0,
+            "must be finite and > 0",
+        )?;
+        let h = self.reference_height;
+        check(
+            h.is_finite() && h > z0,
+            "reference_height",
+            h,
+            "must be finite and above `roughness`",
+        )?;
+        let u = self.reference_speed;
+        check(
+            u.is_finite() && u >= 0.0,
+            "reference_speed",
+            u,
+            "must be finite and ≥ 0",
+        )?;
+        let d = self.direction;
+        check(
+            d.is_finite() && d.length_squared() > 0.0,
+            "direction",
+            d.length(),
+            "must be finite and non-zero",
+        )?;
+        check(
+            self.beta.is_finite() && self.beta >= 0.0,
+            "beta",
+            self.beta,
+            "must be finite and ≥ 0",
+        )?;
+        if let Some(i) = self.turbulence_intensity {
+            check(
+                i.is_finite() && i >= 0.0,
+                "turbulence_intensity",
+                i,
+                "must be finite and ≥ 0",
+            )?;
+        }
+        check_axis("grid.x", self.grid[0])?;
+        check_axis("grid.z", self.grid[1])?;
+        check(
+            self.cell_size.is_finite() && self.cell_size > 0.0,
+            "cell_size",
+            self.cell_size,
+            "must be finite and > 0",
+        )?;
+        let mut nodes = self.grid[0].saturating_mul(self.grid[1]);
+        if let SpatialMode::Volume { vertical_nodes } = self.spatial {
+            check_axis("spatial.vertical_nodes", vertical_nodes)?;
+            nodes = nodes.saturating_mul(vertical_nodes);
+        }
+        if let TemporalMode::Evolving { samples, period } = self.temporal {
+            check_axis("temporal.samples", samples)?;
+            check(
+                period.is_finite() && period > 0.0,
+                "temporal.period",
+                period,
+                "must be finite and > 0",
+            )?;
+            nodes = nodes.saturating_mul(samples);
+        }
+        if nodes > MAX_NODES {
+            return Err(WindError::TooManyNodes {
+                field: "grid",
+                nodes,
+            });
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,283 @@
+//! The [`WindField`] resource: mean log-law wind plus spectral turbulence, sampled anywhere.
+
+use bevy::ecs::resource::Resource;
+use bevy::math::{Vec2, Vec3};
+
+use super::config::{SpatialMode, TemporalMode, WindConfig, WindError};
+use super::profile;
+use crate::spectrum::{GridShape, fbm, fbm_pair};
+
+/// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
+pub const MAX_REFERENCE_SPEED: f32 = 1.0e4;
+/// Highest accepted `turbulence_intensity`.
+pub const MAX_TURBULENCE_INTENSITY: f32 = 10.0;
+
+/// Wind velocity anywhere in space and time: a logarithmic mean profile (eq. 10 of
+/// `free-fall-motion-synthesis.txt`) plus three independent 1/f^β turbulence components with the
+/// per-axis ratios of eq. 12, either on one horizontal plane carried to other heights by eq. 14
+/// or in a full volume, frozen (Taylor) or evolving.
+///
+/// Sampling interpolates grid nodes linearly and wraps periodically, so every finite position and
+/// time gives a finite velocity. The field keeps its own clock, which [`WindPlugin`] advances on
+/// the fixed timestep; [`WindField::velocity`] samples at that clock.
+///
+/// Axes: Y is up; `u` is along the mean wind direction, `v` along `direction × Y`, `w` along Y.
+///
+/// [`WindPlugin`]: super::WindPlugin
+#[derive(Resource, Clone, Debug)]
+pub struct WindField {
+    config: WindConfig,
+    shape: GridShape,
+    /// Unit-variance turbulence (u, v, w) per node, row-major over `[time?, x, y?, z]`.
+    nodes: Vec<Vec3>,
+    friction_velocity: f32,
+    sigma_u: f32,
+    along: Vec3,
+    across: Vec3,
+    time: f64,
+    /// Wind seconds per simulated second; 0 freezes the clock, negative runs it back.
+    pub time_scale: f32,
+    /// When true the clock does not advance.
+    pub paused: bool,
+}
+
+impl WindField {
+    /// Builds the field: validates `config`, then synthesises the three turbulence components
+    /// (two in one complex FFT, see [`fbm_pair`]).
+    pub fn new(config: WindConfig) -> Result<Self, WindError> {
+        validate_extra(&config)?;
+        let dims = grid_dims(&config);
+        let shape = GridShape::new(&dims);
+        let (u, v) = fbm_pair(&dims, config.beta, config.seed);
+        let w = fbm(&dims, config.beta, config.seed ^ 0x9E37_79B9_7F4A_7C15);
+        let nodes = u
+            .iter()
+            .zip(&v)
+            .zip(&w)
+            .map(|((&u, &v), &w)| Vec3::new(u, v, w))
+            .collect();
+        let mut field = Self {
+            config,
+            shape,
+            nodes,
+            friction_velocity: 0.0,
+            sigma_u: 0.0,
+            along: Vec3::X,
+            across: Vec3::Z,
+            time: 0.0,
+            time_scale: 1.0,
+            paused: false,
+        };
+        field.derive();
+        Ok(field)
+    }
+
+    /// Recomputes the quantities that follow from the configuration.
+    fn derive(&mut self) {
+        let c = &self.config;
+        self.friction_velocity =
+            profile::friction_velocity(c.reference_speed, c.reference_height, c.roughness);
+        let intensity = c.turbulence_intensity.unwrap_or_else(|| {
+            profile::surface_layer_intensity(c.reference_height, c.roughness)
+        });
+        self.sigma_u = intensity * c.reference_speed;
+        let d = c.direction.normalize();
+        self.along = Vec3::new(d.x, 0.0, d.y);
+        self.across = self.along.cross(Vec3::Y);
+    }
+
+    /// The configuration the field was built from (with any later speed or direction change).
+    pub fn config(&self) -> &WindConfig {
+        &self.config
+    }
+
+    /// Friction velocity u* (eq. 10), m/s.
+    pub fn friction_velocity(&self) -> f32 {
+        self.friction_velocity
+    }
+
+    /// Standard deviations (σ_u, σ_v, σ_w) of the turbulence at the reference height, m/s.
+    pub fn sigma(&self) -> Vec3 {
+        Vec3::new(
+            self.sigma_u,
+            self.sigma_u * profile::LATERAL_RATIO,
+            self.sigma_u * profile::VERTICAL_RATIO,
+        )
+    }
+
+    /// Unit vector of the mean wind.
+    pub fn direction(&self) -> Vec3 {
+        self.along
+    }
+
+    /// Mean wind speed at `height` by the log law (eq. 10); 0 at or below the roughness length.
+    pub fn mean_speed_at(&self, height: f32) -> f32 {
+        profile::log_law(self.friction_velocity, self.config.roughness, height)
+    }
+
+    /// Changes the mean speed at the reference height, keeping the turbulence pattern.
+    pub fn set_reference_speed(&mut self, speed: f32) -> Result<(), WindError> {
+        let mut config = self.config.clone();
+        config.reference_speed = speed;
+        validate_extra(&config)?;
+        self.config = config;
+        self.derive();
+        Ok(())
+    }
+
+    /// Changes the horizontal direction (x, z) of the mean wind, keeping the pattern.
+    pub fn set_direction(&mut self, direction: Vec2) -> Result<(), WindError> {
+        let mut config = self.config.clone();
+        config.direction = direction;
+        validate_extra(&config)?;
+        self.config = config;
+        self.derive();
+        Ok(())
+    }
+
+    /// Wind time, s.
+    pub fn time(&self) -> f32 {
+        self.time as f32
+    }
+
+    /// Advances the wind clock by `dt` seconds times [`Self::time_scale`], unless paused.
+    /// A non-finite step is ignored.
+    pub fn advance(&mut self, dt: f32) {
+        let step = f64::from(dt) * f64::from(self.time_scale);
+        if !self.paused && step.is_finite() {
+            self.time += step;
+        }
+    }
+
+    /// Wind velocity at `position` at the field's own clock.
+    pub fn velocity(&self, position: Vec3) -> Vec3 {
+        self.sample(position, self.time)
+    }
+
+    /// Wind velocity at `position` and `time`, m/s. Finite for every input.
+    pub fn velocity_at(&self, position: Vec3, time: f32) -> Vec3 {
+        self.sample(position, f64::from(time))
+    }
+
+    /// [`Self::velocity_at`] for many points: `out` is cleared and filled in order.
+    pub fn velocities_at(&self, positions: &[Vec3], time: f32, out: &mut Vec<Vec3>) {
+        out.clear();
+        out.extend(
+            positions
+                .iter()
+                .map(|&p| self.sample(p, f64::from(time))),
+        );
+    }
+
+    fn sample(&self, position: Vec3, time: f64) -> Vec3 {
+        let c = &self.config;
+        let height = position.y;
+        // Mean speed, turbulence scale and advection speed at this height.
+        let (mean, scale, advection) = match c.spatial {
+            SpatialMode::Plane => {
+                let g = profile::height_factor(height, c.reference_height, c.roughness);
+                (c.reference_speed * g, g, c.reference_speed)
+            }
+            SpatialMode::Volume { .. } => {
+                let g = profile::height_factor(height, c.reference_height, c.roughness);
+                let mean = self.mean_speed_at(height);
+                (mean, g.min(1.0), mean)
+            }
+        };
+        let time = if time.is_finite() { time } else { 0.0 };
+        // Taylor's hypothesis: the pattern translates with the mean wind.
+        let shift = f64::from(advection) * time;
+        let cell = f64::from(c.cell_size);
+        let x = (f64::from(position.x) - f64::from(self.along.x) * shift) / cell;
+        let z = (f64::from(position.z) - f64::from(self.along.z) * shift) / cell;
+        let mut coords = [0.0f64; 4];
+        let mut axes = 0;
+        if let TemporalMode::Evolving { samples, period } = c.temporal {
+            coords[axes] = time / f64::from(period) * samples as f64;
+            axes += 1;
+        }
+        coords[axes] = x;
+        axes += 1;
+        if let SpatialMode::Volume { .. } = c.spatial {
+            coords[axes] = f64::from(position.y) / cell;
+            axes += 1;
+        }
+        coords[axes] = z;
+        let n = self.interpolate(&coords) * scale * self.sigma();
+        self.along * (mean + n.x) + self.across * n.y + Vec3::Y * n.z
+    }
+
+    /// Multilinear interpolation of the unit turbulence at node coordinates, wrapping every
+    /// axis; a non-finite coordinate is read as 0.
+    fn interpolate(&self, coords: &[f64; 4]) -> Vec3 {
+        let dims = self.shape.dims();
+        let strides = self.shape.strides();
+        let mut low = [0usize; 4];
+        let mut high = [0usize; 4];
+        let mut frac = [0.0f32; 4];
+        for axis in 0..dims.len() {
+            let n = dims[axis];
+            let c = if coords[axis].is_finite() {
+                coords[axis].rem_euclid(n as f64)
+            } else {
+                0.0
+            };
+            let i = (c.floor() as usize).min(n - 1);
+            low[axis] = i * strides[axis];
+            high[axis] = ((i + 1) % n) * strides[axis];
+            frac[axis] = (c - i as f64).clamp(0.0, 1.0) as f32;
+        }
+        let mut sum = Vec3::ZERO;
+        for corner in 0..(1usize << dims.len()) {
+            let mut index = 0;
+            let mut weight = 1.0;
+            for axis in 0..dims.len() {
+                if corner >> axis & 1 == 1 {
+                    index += high[axis];
+                    weight *= frac[axis];
+                } else {
+                    index += low[axis];
+                    weight *= 1.0 - frac[axis];
+                }
+            }
+            sum += self.nodes[index] * weight;
+        }
+        sum
+    }
+}
+
+/// Node counts per axis, row-major: `[time?, x, y?, z]`.
+fn grid_dims(config: &WindConfig) -> Vec<usize> {
+    let mut dims = Vec::with_capacity(4);
+    if let TemporalMode::Evolving { samples, .. } = config.temporal {
+        dims.push(samples);
+    }
+    dims.push(config.grid[0]);
+    if let SpatialMode::Volume { vertical_nodes } = config.spatial {
+        dims.push(vertical_nodes);
+    }
+    dims.push(config.grid[1]);
+    dims
+}
+
+/// [`WindConfig::validate`] plus the upper bounds that keep every sample finite.
+fn validate_extra(config: &WindConfig) -> Result<(), WindError> {
+    config.validate()?;
+    if config.reference_speed > MAX_REFERENCE_SPEED {
+        return Err(WindError::Invalid {
+            field: "reference_speed",
+            value: config.reference_speed,
+            reason: "must be ≤ 1e4 m/s",
+        });
+    }
+    if let Some(i) = config.turbulence_intensity
+        && i > MAX_TURBULENCE_INTENSITY
+    {
+        return Err(WindError::Invalid {
+            field: "turbulence_intensity",
+            value: i,
+            reason: "must be ≤ 10",
+        });
+    }
+    Ok(())
+}

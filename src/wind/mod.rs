@@ -1,0 +1,27 @@
+//! Wind: a [`WindField`] resource that every other part of the crate samples.
+//!
+//! The model follows §4.1–4.2 of `free-fall-motion-synthesis.txt`:
+//!
+//! | quantity | symbol | unit | source |
+//! |---|---|---|---|
+//! | mean speed at height h | U(h) = (u*/κ) ln(h/z0) | m/s | eq. 10 |
+//! | friction velocity | u* | m/s | eq. 10, from U at the reference height |
+//! | roughness length | z0 | m | eq. 10 |
+//! | turbulence spectrum | S ∝ 1/f^β along a line, β = 5/3 | – | eq. 11, 13 |
+//! | amplitudes | σ_u = I·U(h_ref), σ_v = 0.88 σ_u, σ_w = 0.55 σ_u | m/s | eq. 12 (see [`profile`]) |
+//! | plane-to-height scaling | ln(h/z0) / ln(h0/z0) | – | eq. 14 |
+//!
+//! [`WindPlugin`] inserts the field and advances its clock on the fixed timestep.
+
+mod config;
+mod field;
+#[cfg(feature = "gizmos")]
+mod gizmos;
+mod plugin;
+pub mod profile;
+
+pub use config::{MAX_NODES, SpatialMode, TemporalMode, WindConfig, WindError};
+pub use field::{MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, WindField};
+#[cfg(feature = "gizmos")]
+pub use gizmos::{WindGizmos, WindGizmosPlugin};
+pub use plugin::{WindPlugin, advance_wind_clock};
