@@ -19,10 +19,15 @@
 //! Randomness comes from [`rand_pcg::Pcg64`] and the inverse FFT from rustfft's *scalar*
 //! planner, so no CPU-feature detection changes the order of floating-point operations: the
 //! output is the same bit for bit on every machine and any thread count. The SIMD planners of
-//! rustfft would be faster but pick different algorithms on different CPUs.
+//! rustfft are faster but pick different algorithms on different CPUs; [`FftBackend::Simd`]
+//! selects them for a [`Synthesizer`] where speed matters more than cross-machine bits.
 
+mod amplitude;
+mod fft;
 mod grid;
+mod normal;
 mod synth;
 
+pub use fft::FftBackend;
 pub use grid::GridShape;
-pub use synth::{SpectrumError, fbm, fbm_pair, try_fbm, try_fbm_pair};
+pub use synth::{SpectrumError, Synthesizer, fbm, fbm_pair, try_fbm, try_fbm_pair};

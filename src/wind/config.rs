@@ -1,6 +1,8 @@
 //! Configuration of a [`WindField`](super::WindField) and its validation.
 
 use bevy::math::Vec2;
+
+use crate::spectrum::FftBackend;
 use bevy::reflect::Reflect;
 use thiserror::Error;
 
@@ -47,6 +49,7 @@ pub enum TemporalMode {
 /// | `grid` | nodes | [128, 128] | horizontal nodes along x and z |
 /// | `cell_size` | m | 1.0 | distance between grid nodes |
 /// | `seed` | – | 0 | seed of the turbulence |
+/// | `fft` | – | `Portable` | [`FftBackend`]: same bits on every machine, or SIMD speed |
 #[derive(Clone, Debug, PartialEq, Reflect)]
 pub struct WindConfig {
     /// Mean wind speed at `reference_height`, m/s.
@@ -71,6 +74,9 @@ pub struct WindConfig {
     pub cell_size: f32,
     /// Seed of the turbulence.
     pub seed: u64,
+    /// Planner of the inverse FFT: `Portable` (same bits everywhere) or `Simd` (faster).
+    #[reflect(ignore)]
+    pub fft: FftBackend,
 }
 
 impl Default for WindConfig {
@@ -87,6 +93,7 @@ impl Default for WindConfig {
             grid: [128, 128],
             cell_size: 1.0,
             seed: 0,
+            fft: FftBackend::Portable,
         }
     }
 }

@@ -5,7 +5,7 @@ use bevy::math::{Vec2, Vec3};
 
 use super::config::{SpatialMode, TemporalMode, WindConfig, WindError};
 use super::profile;
-use crate::spectrum::{GridShape, fbm, fbm_pair};
+use crate::spectrum::{GridShape, SpectrumError, Synthesizer};
 
 /// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
 pub const MAX_REFERENCE_SPEED: f32 = 1.0e4;
@@ -43,13 +43,24 @@ pub struct WindField {
 
 impl WindField {
     /// Builds the field: validates `config`, then synthesises the three turbulence components
-    /// (two in one complex FFT, see [`fbm_pair`]).
+    /// (two in one complex FFT, see [`Synthesizer::pair`]).
     pub fn new(config: WindConfig) -> Result<Self, WindError> {
         validate_extra(&config)?;
         let dims = grid_dims(&config);
         let shape = GridShape::new(&dims);
-        let (u, v) = fbm_pair(&dims, config.beta, config.seed);
-        let w = fbm(&dims, config.beta, config.seed ^ 0x9E37_79B9_7F4A_7C15);
+        let synth = Synthesizer::new(&dims, config.beta, config.fft).map_err(|e| match e {
+            SpectrumError::Beta(beta) => WindError::Invalid {
+                field: "beta",
+                value: beta,
+                reason: "must be finite and ≥ 0",
+            },
+            SpectrumError::NoAxis | SpectrumError::AxisTooShort { .. } => WindError::GridAxis {
+                field: "grid",
+                len: 0,
+            },
+        })?;
+        let (u, v) = synth.pair(config.seed);
+        let w = synth.field(config.seed ^ 0x9E37_79B9_7F4A_7C15);
         let nodes = u
             .iter()
             .zip(&v)
