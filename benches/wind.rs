@@ -10,8 +10,9 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use bevy::math::{Vec2, Vec3};
+use bevy_windfall::spectrum::FftBackend;
 use bevy_windfall::wind::{SpatialMode, TemporalMode, WindConfig, WindField};
-use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, criterion_main};
 use noise::{Fbm, MultiFractal, NoiseFn, Perlin};
 use rustfft::{Fft, FftPlanner, FftPlannerScalar, num_complex::Complex};
 
@@ -78,19 +79,44 @@ fn generation(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(3));
     let cases: [(&str, [usize; 2], SpatialMode, Vec<usize>); 4] = [
         ("2d_256", [256, 256], SpatialMode::Plane, vec![256, 256]),
-        ("3d_64", [64, 64], SpatialMode::Volume { vertical_nodes: 64 }, vec![64; 3]),
-        ("3d_100", [100, 100], SpatialMode::Volume { vertical_nodes: 100 }, vec![100; 3]),
-        ("3d_128", [128, 128], SpatialMode::Volume { vertical_nodes: 128 }, vec![128; 3]),
+        (
+            "3d_64",
+            [64, 64],
+            SpatialMode::Volume { vertical_nodes: 64 },
+            vec![64; 3],
+        ),
+        (
+            "3d_100",
+            [100, 100],
+            SpatialMode::Volume {
+                vertical_nodes: 100,
+            },
+            vec![100; 3],
+        ),
+        (
+            "3d_128",
+            [128, 128],
+            SpatialMode::Volume {
+                vertical_nodes: 128,
+            },
+            vec![128; 3],
+        ),
     ];
     for (name, grid, spatial, dims) in cases {
-        let config = WindConfig {
-            grid,
-            spatial,
-            ..WindConfig::default()
-        };
-        group.bench_function(BenchmarkId::new("windfall", name), |b| {
-            b.iter(|| WindField::new(black_box(config.clone())).unwrap())
-        });
+        for (label, fft) in [
+            ("windfall_portable", FftBackend::Portable),
+            ("windfall_simd", FftBackend::Simd),
+        ] {
+            let config = WindConfig {
+                grid,
+                spatial,
+                fft,
+                ..WindConfig::default()
+            };
+            group.bench_function(BenchmarkId::new(label, name), |b| {
+                b.iter(|| WindField::new(black_box(config.clone())).unwrap())
+            });
+        }
         let len: usize = dims.iter().product();
         for (label, simd) in [("rustfft_simd_x3", true), ("rustfft_scalar_x3", false)] {
             let bare = BareInverse::new(&dims, simd);
@@ -165,5 +191,8 @@ fn sampling(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, generation, sampling);
-criterion_main!(benches);
+#[allow(missing_docs)]
+mod group {
+    criterion::criterion_group!(benches, super::generation, super::sampling);
+}
+criterion_main!(group::benches);

@@ -9,7 +9,9 @@ pub mod wind;
 /// The most used types.
 pub mod prelude {
     pub use crate::spectrum::fbm;
-    pub use crate::wind::{SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin};
+    pub use crate::wind::{
+        SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin,
+    };
     pub use crate::{WindfallPlugins, WindfallSystems};
 }
 

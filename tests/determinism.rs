@@ -26,7 +26,10 @@ fn same_seed_same_wind_bit_for_bit() {
         (SpatialMode::Plane, TemporalMode::Frozen),
         (
             SpatialMode::Volume { vertical_nodes: 8 },
-            TemporalMode::Evolving { samples: 8, period: 4.0 },
+            TemporalMode::Evolving {
+                samples: 8,
+                period: 4.0,
+            },
         ),
     ] {
         let config = WindConfig {
@@ -38,7 +41,16 @@ fn same_seed_same_wind_bit_for_bit() {
         };
         let a = run(config.clone(), 300);
         assert_eq!(a, run(config.clone(), 300), "{spatial:?} {temporal:?}");
-        assert_ne!(a, run(WindConfig { seed: 100, ..config.clone() }, 300));
+        assert_ne!(
+            a,
+            run(
+                WindConfig {
+                    seed: 100,
+                    ..config.clone()
+                },
+                300
+            )
+        );
         assert_ne!(a, run(config, 299), "the clock moved the wind");
     }
 }

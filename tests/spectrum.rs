@@ -55,7 +55,10 @@ fn non_power_of_two_sizes_keep_slope_and_moments() {
     assert_slope(&[100, 1200], 1, 4, 4, 300);
     for dims in [&[2usize][..], &[3], &[7, 5], &[3, 5, 7], &[2, 2, 2]] {
         let (mean, var) = mean_variance(&fbm(dims, 5.0 / 3.0, 3));
-        assert!(mean.abs() < 1e-5 && (var - 1.0).abs() < 1e-4, "{dims:?}: {mean} {var}");
+        assert!(
+            mean.abs() < 1e-5 && (var - 1.0).abs() < 1e-4,
+            "{dims:?}: {mean} {var}"
+        );
     }
 }
 
@@ -65,7 +68,10 @@ fn fields_have_zero_mean_and_unit_variance() {
         for dims in [&[1024usize][..], &[64, 48], &[16, 16, 16]] {
             let (mean, var) = mean_variance(&fbm(dims, beta, 11));
             assert!(mean.abs() < 1e-5, "{dims:?} β={beta}: mean {mean}");
-            assert!((var - 1.0).abs() < 1e-4, "{dims:?} β={beta}: variance {var}");
+            assert!(
+                (var - 1.0).abs() < 1e-4,
+                "{dims:?} β={beta}: variance {var}"
+            );
         }
     }
 }
@@ -85,7 +91,10 @@ fn paired_fields_are_real_and_independent() {
             / a.len() as f64;
         assert!(corr.abs() < 0.1, "β={beta}: correlation {corr}");
         let slope = fit_slope(&line_spectrum(&b, &dims, 1), 4, 24);
-        assert!((slope + f64::from(beta)).abs() <= 0.15, "second field slope {slope}");
+        assert!(
+            (slope + f64::from(beta)).abs() <= 0.15,
+            "second field slope {slope}"
+        );
     }
 }
 
@@ -101,7 +110,10 @@ fn fields_tile_seamlessly() {
         .map(|(i, j)| sq(f[i * m + j], f[i * m + j - 1]))
         .sum::<f64>()
         / (n * (m - 1)) as f64;
-    assert!((seam / inner - 1.0).abs() < 0.3, "seam {seam} inner {inner}");
+    assert!(
+        (seam / inner - 1.0).abs() < 0.3,
+        "seam {seam} inner {inner}"
+    );
     // A non-periodic field would jump by about √2 σ at the seam: ratio ≫ 1.
 }
 
@@ -148,6 +160,9 @@ fn bad_input_gives_a_named_error() {
         Err(SpectrumError::AxisTooShort { axis: 1, len: 1 })
     );
     for beta in [-1.0, f32::NAN, f32::INFINITY] {
-        assert!(matches!(try_fbm(&[8], beta, 0), Err(SpectrumError::Beta(_))));
+        assert!(matches!(
+            try_fbm(&[8], beta, 0),
+            Err(SpectrumError::Beta(_))
+        ));
     }
 }

@@ -60,7 +60,10 @@ fn frozen_time_series_has_kolmogorov_slope() {
                 ..config()
             })
             .unwrap();
-            for (t, s) in total.iter_mut().zip(frozen_point_spectra(&field, grid[1], 1)) {
+            for (t, s) in total
+                .iter_mut()
+                .zip(frozen_point_spectra(&field, grid[1], 1))
+            {
                 t.resize(s.len(), 0.0);
                 t.iter_mut().zip(s).for_each(|(t, s)| *t += s);
             }
@@ -84,7 +87,8 @@ fn components_follow_eq_12_ratios_and_surface_layer_level() {
     let mut samples: [Vec<f32>; 3] = Default::default();
     for i in 0..c.grid[0] {
         for k in 0..c.grid[1] {
-            let p = Vec3::new(i as f32, c.reference_height, k as f32) * Vec3::new(c.cell_size, 1.0, c.cell_size);
+            let p = Vec3::new(i as f32, c.reference_height, k as f32)
+                * Vec3::new(c.cell_size, 1.0, c.cell_size);
             let v = field.velocity_at(p, 0.0);
             for (axis, s) in samples.iter_mut().enumerate() {
                 s.push(v[axis]);
@@ -94,9 +98,21 @@ fn components_follow_eq_12_ratios_and_surface_layer_level() {
     let sd: Vec<f64> = samples.iter().map(|s| mean_variance(s).1.sqrt()).collect();
     let u_star = f64::from(field.friction_velocity());
     // World axes: x along the wind (u), y up (w), z across (v).
-    assert!((sd[2] / sd[0] - 0.88).abs() < 1e-3, "σv/σu = {}", sd[2] / sd[0]);
-    assert!((sd[1] / sd[0] - 0.55).abs() < 1e-3, "σw/σu = {}", sd[1] / sd[0]);
-    assert!((sd[0] / u_star - 2.5).abs() < 1e-3, "σu/u* = {}", sd[0] / u_star);
+    assert!(
+        (sd[2] / sd[0] - 0.88).abs() < 1e-3,
+        "σv/σu = {}",
+        sd[2] / sd[0]
+    );
+    assert!(
+        (sd[1] / sd[0] - 0.55).abs() < 1e-3,
+        "σw/σu = {}",
+        sd[1] / sd[0]
+    );
+    assert!(
+        (sd[0] / u_star - 2.5).abs() < 1e-3,
+        "σu/u* = {}",
+        sd[0] / u_star
+    );
     // The user's intensity overrides it.
     let gusty = WindField::new(WindConfig {
         turbulence_intensity: Some(0.5),
@@ -108,7 +124,10 @@ fn components_follow_eq_12_ratios_and_surface_layer_level() {
 
 #[test]
 fn mean_profile_is_the_log_law_in_both_modes() {
-    for spatial in [SpatialMode::Plane, SpatialMode::Volume { vertical_nodes: 8 }] {
+    for spatial in [
+        SpatialMode::Plane,
+        SpatialMode::Volume { vertical_nodes: 8 },
+    ] {
         let field = WindField::new(WindConfig {
             spatial,
             grid: [32, 32],
@@ -139,10 +158,17 @@ fn mean_profile_is_the_log_law_in_both_modes() {
             }
         }
         let mean_turbulence = sum / (1024 * layers.len()) as f64;
-        assert!(mean_turbulence.abs() < 1e-5, "{spatial:?}: {mean_turbulence}");
+        assert!(
+            mean_turbulence.abs() < 1e-5,
+            "{spatial:?}: {mean_turbulence}"
+        );
         for h in [0.3f32, 0.1, 0.0, -10.0] {
             assert_eq!(field.mean_speed_at(h), 0.0);
-            assert_eq!(field.velocity_at(Vec3::new(1.0, h, 2.0), 3.0), Vec3::ZERO, "below z0: still air");
+            assert_eq!(
+                field.velocity_at(Vec3::new(1.0, h, 2.0), 3.0),
+                Vec3::ZERO,
+                "below z0: still air"
+            );
         }
     }
 }
@@ -177,7 +203,10 @@ fn frozen_pattern_translates_and_evolving_pattern_changes() {
         assert!((riding(&frozen, t) - riding(&frozen, 0.0)).length() < 1e-3);
     }
     let change = (riding(&evolving, 2.0) - riding(&evolving, 0.0)).length();
-    assert!(change > 0.05 * evolving.sigma().x, "evolving changed only {change}");
+    assert!(
+        change > 0.05 * evolving.sigma().x,
+        "evolving changed only {change}"
+    );
     // ... and the evolution repeats with its period.
     assert!((riding(&evolving, 8.0) - riding(&evolving, 0.0)).length() < 1e-3);
     // Without wind nothing moves in the frozen field, but evolving turbulence still does.
@@ -186,7 +215,10 @@ fn frozen_pattern_translates_and_evolving_pattern_changes() {
         ..evolving.config().clone()
     })
     .unwrap();
-    assert_ne!(calm_evolving.velocity_at(start, 0.0), calm_evolving.velocity_at(start, 1.0));
+    assert_ne!(
+        calm_evolving.velocity_at(start, 0.0),
+        calm_evolving.velocity_at(start, 1.0)
+    );
 }
 
 #[test]
@@ -205,7 +237,9 @@ fn direction_rotates_the_mean_wind() {
 #[test]
 fn batch_sampling_equals_single_sampling() {
     let field = WindField::new(config()).unwrap();
-    let points: Vec<Vec3> = (0..100).map(|i| Vec3::new(i as f32 * 0.7, 1.0 + i as f32 * 0.1, -(i as f32))).collect();
+    let points: Vec<Vec3> = (0..100)
+        .map(|i| Vec3::new(i as f32 * 0.7, 1.0 + i as f32 * 0.1, -(i as f32)))
+        .collect();
     let mut out = Vec::new();
     field.velocities_at(&points, 2.5, &mut out);
     assert_eq!(out.len(), points.len());
@@ -217,47 +251,211 @@ fn batch_sampling_equals_single_sampling() {
 #[test]
 fn every_bad_configuration_names_its_field() {
     let cases: Vec<(&str, WindConfig)> = vec![
-        ("roughness", WindConfig { roughness: 0.0, ..default() }),
-        ("roughness", WindConfig { roughness: -1.0, ..default() }),
-        ("roughness", WindConfig { roughness: f32::NAN, ..default() }),
-        ("reference_height", WindConfig { reference_height: 0.3, ..default() }),
-        ("reference_height", WindConfig { reference_height: 0.1, ..default() }),
-        ("reference_height", WindConfig { reference_height: f32::INFINITY, ..default() }),
-        ("reference_speed", WindConfig { reference_speed: -1.0, ..default() }),
-        ("reference_speed", WindConfig { reference_speed: f32::NAN, ..default() }),
-        ("reference_speed", WindConfig { reference_speed: f32::INFINITY, ..default() }),
-        ("reference_speed", WindConfig { reference_speed: 2e4, ..default() }),
-        ("beta", WindConfig { beta: -0.1, ..default() }),
-        ("beta", WindConfig { beta: f32::NAN, ..default() }),
-        ("direction", WindConfig { direction: Vec2::ZERO, ..default() }),
-        ("turbulence_intensity", WindConfig { turbulence_intensity: Some(-0.1), ..default() }),
-        ("turbulence_intensity", WindConfig { turbulence_intensity: Some(50.0), ..default() }),
-        ("grid.x", WindConfig { grid: [1, 8], ..default() }),
-        ("grid.z", WindConfig { grid: [8, 0], ..default() }),
-        ("cell_size", WindConfig { cell_size: 0.0, ..default() }),
-        ("cell_size", WindConfig { cell_size: -2.0, ..default() }),
-        ("spatial.vertical_nodes", WindConfig { spatial: SpatialMode::Volume { vertical_nodes: 1 }, ..default() }),
-        ("temporal.samples", WindConfig { temporal: TemporalMode::Evolving { samples: 1, period: 1.0 }, ..default() }),
-        ("temporal.period", WindConfig { temporal: TemporalMode::Evolving { samples: 8, period: 0.0 }, ..default() }),
-        ("grid", WindConfig { grid: [1 << 14, 1 << 14], ..default() }),
+        (
+            "roughness",
+            WindConfig {
+                roughness: 0.0,
+                ..default()
+            },
+        ),
+        (
+            "roughness",
+            WindConfig {
+                roughness: -1.0,
+                ..default()
+            },
+        ),
+        (
+            "roughness",
+            WindConfig {
+                roughness: f32::NAN,
+                ..default()
+            },
+        ),
+        (
+            "reference_height",
+            WindConfig {
+                reference_height: 0.3,
+                ..default()
+            },
+        ),
+        (
+            "reference_height",
+            WindConfig {
+                reference_height: 0.1,
+                ..default()
+            },
+        ),
+        (
+            "reference_height",
+            WindConfig {
+                reference_height: f32::INFINITY,
+                ..default()
+            },
+        ),
+        (
+            "reference_speed",
+            WindConfig {
+                reference_speed: -1.0,
+                ..default()
+            },
+        ),
+        (
+            "reference_speed",
+            WindConfig {
+                reference_speed: f32::NAN,
+                ..default()
+            },
+        ),
+        (
+            "reference_speed",
+            WindConfig {
+                reference_speed: f32::INFINITY,
+                ..default()
+            },
+        ),
+        (
+            "reference_speed",
+            WindConfig {
+                reference_speed: 2e4,
+                ..default()
+            },
+        ),
+        (
+            "beta",
+            WindConfig {
+                beta: -0.1,
+                ..default()
+            },
+        ),
+        (
+            "beta",
+            WindConfig {
+                beta: f32::NAN,
+                ..default()
+            },
+        ),
+        (
+            "direction",
+            WindConfig {
+                direction: Vec2::ZERO,
+                ..default()
+            },
+        ),
+        (
+            "turbulence_intensity",
+            WindConfig {
+                turbulence_intensity: Some(-0.1),
+                ..default()
+            },
+        ),
+        (
+            "turbulence_intensity",
+            WindConfig {
+                turbulence_intensity: Some(50.0),
+                ..default()
+            },
+        ),
+        (
+            "grid.x",
+            WindConfig {
+                grid: [1, 8],
+                ..default()
+            },
+        ),
+        (
+            "grid.z",
+            WindConfig {
+                grid: [8, 0],
+                ..default()
+            },
+        ),
+        (
+            "cell_size",
+            WindConfig {
+                cell_size: 0.0,
+                ..default()
+            },
+        ),
+        (
+            "cell_size",
+            WindConfig {
+                cell_size: -2.0,
+                ..default()
+            },
+        ),
+        (
+            "spatial.vertical_nodes",
+            WindConfig {
+                spatial: SpatialMode::Volume { vertical_nodes: 1 },
+                ..default()
+            },
+        ),
+        (
+            "temporal.samples",
+            WindConfig {
+                temporal: TemporalMode::Evolving {
+                    samples: 1,
+                    period: 1.0,
+                },
+                ..default()
+            },
+        ),
+        (
+            "temporal.period",
+            WindConfig {
+                temporal: TemporalMode::Evolving {
+                    samples: 8,
+                    period: 0.0,
+                },
+                ..default()
+            },
+        ),
+        (
+            "grid",
+            WindConfig {
+                grid: [1 << 14, 1 << 14],
+                ..default()
+            },
+        ),
     ];
     for (field, config) in cases {
         let err = WindField::new(config.clone()).expect_err(field);
         assert_eq!(err.field(), field, "{config:?}: {err}");
-        assert!(err.to_string().contains(field), "message names the field: {err}");
+        assert!(
+            err.to_string().contains(field),
+            "message names the field: {err}"
+        );
     }
     // Setters validate too and leave the field unchanged.
     let mut wind = WindField::new(config()).unwrap();
-    assert_eq!(wind.set_reference_speed(f32::NAN).unwrap_err().field(), "reference_speed");
-    assert_eq!(wind.set_direction(Vec2::ZERO).unwrap_err().field(), "direction");
+    assert_eq!(
+        wind.set_reference_speed(f32::NAN).unwrap_err().field(),
+        "reference_speed"
+    );
+    assert_eq!(
+        wind.set_direction(Vec2::ZERO).unwrap_err().field(),
+        "direction"
+    );
     assert_eq!(wind.config().reference_speed, 5.0);
 }
 
 fn any_mode() -> impl Strategy<Value = (SpatialMode, TemporalMode)> {
     (any::<bool>(), any::<bool>()).prop_map(|(volume, evolving)| {
         (
-            if volume { SpatialMode::Volume { vertical_nodes: 4 } } else { SpatialMode::Plane },
-            if evolving { TemporalMode::Evolving { samples: 4, period: 3.0 } } else { TemporalMode::Frozen },
+            if volume {
+                SpatialMode::Volume { vertical_nodes: 4 }
+            } else {
+                SpatialMode::Plane
+            },
+            if evolving {
+                TemporalMode::Evolving {
+                    samples: 4,
+                    period: 3.0,
+                }
+            } else {
+                TemporalMode::Frozen
+            },
         )
     })
 }
@@ -305,7 +503,11 @@ proptest! {
 #[test]
 fn non_finite_position_or_time_gives_a_finite_velocity() {
     let field = WindField::new(config()).unwrap();
-    for p in [Vec3::NAN, Vec3::INFINITY, Vec3::new(1.0, f32::NEG_INFINITY, 2.0)] {
+    for p in [
+        Vec3::NAN,
+        Vec3::INFINITY,
+        Vec3::new(1.0, f32::NEG_INFINITY, 2.0),
+    ] {
         for t in [0.0, f32::NAN, f32::INFINITY] {
             assert!(field.velocity_at(p, t).is_finite());
         }
@@ -346,12 +548,18 @@ fn plugins_are_opt_in() {
     let mut app = headless_app();
     app.add_plugins(WindfallPlugins);
     ready(&mut app);
-    assert_eq!(app.world().resource::<WindField>().config(), &WindConfig::default());
+    assert_eq!(
+        app.world().resource::<WindField>().config(),
+        &WindConfig::default()
+    );
 
     // A field inserted by the user is kept.
     let mut app = headless_app();
     app.insert_resource(WindField::new(config()).unwrap());
     app.add_plugins(WindPlugin::default());
     ready(&mut app);
-    assert_eq!(app.world().resource::<WindField>().config().reference_speed, 5.0);
+    assert_eq!(
+        app.world().resource::<WindField>().config().reference_speed,
+        5.0
+    );
 }

@@ -23,7 +23,10 @@ impl AmplitudeTable {
         let octant = GridShape::new(&half);
         let n = dims.len();
         let exponent = -(beta + n as f32 - 1.0) / 2.0;
-        let f2_min = dims.iter().map(|&n| 1.0 / (n * n) as f32).fold(f32::MAX, f32::min);
+        let f2_min = dims
+            .iter()
+            .map(|&n| 1.0 / (n * n) as f32)
+            .fold(f32::MAX, f32::min);
         let log_f2_min = libm::logf(f2_min);
         // Per axis: squared frequency of the bin and of its nearest alias.
         let near: Vec<Vec<[f32; 2]>> = dims

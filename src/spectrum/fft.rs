@@ -27,11 +27,19 @@ impl InverseFftNd {
         let ffts = match backend {
             FftBackend::Portable => {
                 let mut planner = FftPlannerScalar::new();
-                shape.dims().iter().map(|&n| planner.plan_fft_inverse(n)).collect()
+                shape
+                    .dims()
+                    .iter()
+                    .map(|&n| planner.plan_fft_inverse(n))
+                    .collect()
             }
             FftBackend::Simd => {
                 let mut planner = FftPlanner::new();
-                shape.dims().iter().map(|&n| planner.plan_fft_inverse(n)).collect()
+                shape
+                    .dims()
+                    .iter()
+                    .map(|&n| planner.plan_fft_inverse(n))
+                    .collect()
             }
         };
         Self { ffts }

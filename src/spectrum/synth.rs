@@ -225,7 +225,10 @@ mod tests {
                         // F + iG with F, G Hermitian: (F + iG)(−k) = F(k)* + i G(k)*.
                         let f = (a + m.conj()) * 0.5;
                         let g = (a - m.conj()) * Complex::new(0.0, -0.5);
-                        let (fm, gm) = ((m + a.conj()) * 0.5, (m - a.conj()) * Complex::new(0.0, -0.5));
+                        let (fm, gm) = (
+                            (m + a.conj()) * 0.5,
+                            (m - a.conj()) * Complex::new(0.0, -0.5),
+                        );
                         assert!((f - fm.conj()).norm() < 1e-6 && (g - gm.conj()).norm() < 1e-6);
                     } else {
                         assert_eq!(a, m.conj(), "{dims:?} bin {flat}");
@@ -244,7 +247,10 @@ mod tests {
             s.fft.process(&mut field, &s.shape);
             let max_re = field.iter().map(|c| c.re.abs()).fold(0.0, f32::max);
             let max_im = field.iter().map(|c| c.im.abs()).fold(0.0, f32::max);
-            assert!(max_im <= 1e-5 * max_re, "{dims:?}: imaginary {max_im} real {max_re}");
+            assert!(
+                max_im <= 1e-5 * max_re,
+                "{dims:?}: imaginary {max_im} real {max_re}"
+            );
         }
     }
 
@@ -276,7 +282,9 @@ mod tests {
     #[test]
     fn backends_agree_to_rounding() {
         let portable = synth(&[32, 24]).field(5);
-        let simd = Synthesizer::new(&[32, 24], 5.0 / 3.0, FftBackend::Simd).unwrap().field(5);
+        let simd = Synthesizer::new(&[32, 24], 5.0 / 3.0, FftBackend::Simd)
+            .unwrap()
+            .field(5);
         for (a, b) in portable.iter().zip(&simd) {
             assert!((a - b).abs() < 1e-4);
         }
@@ -290,6 +298,9 @@ mod tests {
             Err(SpectrumError::AxisTooShort { axis: 1, len: 1 })
         );
         assert_eq!(try_fbm(&[8], -0.5, 0), Err(SpectrumError::Beta(-0.5)));
-        assert!(matches!(try_fbm(&[8], f32::NAN, 0), Err(SpectrumError::Beta(_))));
+        assert!(matches!(
+            try_fbm(&[8], f32::NAN, 0),
+            Err(SpectrumError::Beta(_))
+        ));
     }
 }

@@ -88,9 +88,9 @@ impl WindField {
         let c = &self.config;
         self.friction_velocity =
             profile::friction_velocity(c.reference_speed, c.reference_height, c.roughness);
-        let intensity = c.turbulence_intensity.unwrap_or_else(|| {
-            profile::surface_layer_intensity(c.reference_height, c.roughness)
-        });
+        let intensity = c
+            .turbulence_intensity
+            .unwrap_or_else(|| profile::surface_layer_intensity(c.reference_height, c.roughness));
         self.sigma_u = intensity * c.reference_speed;
         let d = c.direction.normalize();
         self.along = Vec3::new(d.x, 0.0, d.y);
@@ -173,11 +173,7 @@ impl WindField {
     /// [`Self::velocity_at`] for many points: `out` is cleared and filled in order.
     pub fn velocities_at(&self, positions: &[Vec3], time: f32, out: &mut Vec<Vec3>) {
         out.clear();
-        out.extend(
-            positions
-                .iter()
-                .map(|&p| self.sample(p, f64::from(time))),
-        );
+        out.extend(positions.iter().map(|&p| self.sample(p, f64::from(time))));
     }
 
     fn sample(&self, position: Vec3, time: f64) -> Vec3 {
@@ -238,22 +234,21 @@ impl WindField {
             high[axis] = ((i + 1) % n) * strides[axis];
             frac[axis] = (c - i as f64).clamp(0.0, 1.0) as f32;
         }
-        let mut sum = Vec3::ZERO;
-        for corner in 0..(1usize << dims.len()) {
-            let mut index = 0;
-            let mut weight = 1.0;
-            for axis in 0..dims.len() {
-                if corner >> axis & 1 == 1 {
-                    index += high[axis];
-                    weight *= frac[axis];
-                } else {
-                    index += low[axis];
-                    weight *= 1.0 - frac[axis];
-                }
+        // Corner offsets and weights, doubled one axis at a time (2 + 4 + … products, not d·2^d).
+        let mut corners = [(0usize, 1.0f32); 16];
+        let mut count = 1;
+        for axis in 0..dims.len() {
+            for c in 0..count {
+                let (offset, weight) = corners[c];
+                corners[c] = (offset + low[axis], weight * (1.0 - frac[axis]));
+                corners[c + count] = (offset + high[axis], weight * frac[axis]);
             }
-            sum += self.nodes[index] * weight;
+            count *= 2;
         }
-        sum
+        corners[..count]
+            .iter()
+            .map(|&(offset, weight)| self.nodes[offset] * weight)
+            .sum()
     }
 }
 

@@ -23,5 +23,5 @@ pub mod profile;
 pub use config::{MAX_NODES, SpatialMode, TemporalMode, WindConfig, WindError};
 pub use field::{MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, WindField};
 #[cfg(feature = "gizmos")]
-pub use gizmos::{WindGizmos, WindGizmosPlugin};
+pub use gizmos::{WindGizmos, WindGizmosPlugin, speed_class_color};
 pub use plugin::{WindPlugin, advance_wind_clock};

@@ -37,7 +37,7 @@ pub fn line_spectrum(field: &[f32], dims: &[usize], axis: usize) -> Vec<f64> {
     let mut line = vec![Complex::new(0.0, 0.0); n];
     let mut lines = 0usize;
     for start in 0..field.len() {
-        if (start / stride) % n != 0 {
+        if !(start / stride).is_multiple_of(n) {
             continue; // not the first node of a line along `axis`
         }
         for (i, c) in line.iter_mut().enumerate() {
@@ -82,7 +82,9 @@ pub fn fit_slope(power: &[f64], k_lo: usize, k_hi: usize) -> f64 {
     let w: f64 = ws.iter().sum();
     let mx = xs.iter().zip(&ws).map(|(x, w)| x * w).sum::<f64>() / w;
     let my = ys.iter().zip(&ws).map(|(y, w)| y * w).sum::<f64>() / w;
-    let sxy: f64 = (0..xs.len()).map(|i| ws[i] * (xs[i] - mx) * (ys[i] - my)).sum();
+    let sxy: f64 = (0..xs.len())
+        .map(|i| ws[i] * (xs[i] - mx) * (ys[i] - my))
+        .sum();
     let sxx: f64 = (0..xs.len()).map(|i| ws[i] * (xs[i] - mx).powi(2)).sum();
     sxy / sxx
 }

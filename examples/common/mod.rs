@@ -1,0 +1,97 @@
+//! What every example scene shares: `--frames N`, `--screenshot PATH`, a window of fixed size.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
+use bevy::window::WindowResolution;
+
+/// Command-line options of the example scenes.
+#[derive(Resource, Clone, Debug, Default)]
+pub struct ExampleArgs {
+    /// Run this many frames, then exit.
+    pub frames: Option<u32>,
+    /// Save a screenshot here once the scene has rendered, then exit.
+    pub screenshot: Option<PathBuf>,
+    /// Other arguments, for the scene itself.
+    pub rest: Vec<String>,
+}
+
+impl ExampleArgs {
+    /// Reads `--frames N` and `--screenshot PATH` from the command line.
+    pub fn parse() -> Self {
+        let mut args = Self::default();
+        let mut it = std::env::args().skip(1);
+        while let Some(arg) = it.next() {
+            match arg.as_str() {
+                "--frames" => {
+                    args.frames = it.next().and_then(|n| n.parse().ok());
+                }
+                "--screenshot" => args.screenshot = it.next().map(PathBuf::from),
+                _ => args.rest.push(arg),
+            }
+        }
+        args
+    }
+}
+
+/// Software renderers show black frames while shaders compile: the screenshot waits this long
+/// unless `--frames` says when.
+const DEFAULT_SCREENSHOT_FRAME: u32 = 400;
+
+/// `DefaultPlugins` with a 1280×720 window titled `title`, plus the `--frames`/`--screenshot`
+/// handling.
+pub fn example_app(title: &str) -> App {
+    let args = ExampleArgs::parse();
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+        primary_window: Some(Window {
+            title: title.into(),
+            resolution: WindowResolution::new(1280, 720),
+            ..default()
+        }),
+        ..default()
+    }))
+    .insert_resource(args)
+    .init_resource::<FrameCount>()
+    .add_systems(Last, frames_and_screenshot);
+    app
+}
+
+#[derive(Resource, Default)]
+struct FrameCount {
+    frames: u32,
+    requested: bool,
+}
+
+#[derive(Component)]
+struct ScreenshotDone;
+
+fn frames_and_screenshot(
+    mut commands: Commands,
+    args: Res<ExampleArgs>,
+    mut count: ResMut<FrameCount>,
+    done: Query<(), With<ScreenshotDone>>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    count.frames += 1;
+    if let Some(path) = &args.screenshot {
+        let at = args.frames.unwrap_or(DEFAULT_SCREENSHOT_FRAME);
+        if count.frames >= at && !count.requested {
+            count.requested = true;
+            commands
+                .spawn(Screenshot::primary_window())
+                .observe(save_to_disk(path.clone()))
+                .observe(|captured: On<ScreenshotCaptured>, mut commands: Commands| {
+                    commands.entity(captured.entity).insert(ScreenshotDone);
+                });
+        }
+        if !done.is_empty() {
+            info!("screenshot saved to {}", path.display());
+            exit.write(AppExit::Success);
+        }
+    } else if args.frames.is_some_and(|n| count.frames >= n) {
+        exit.write(AppExit::Success);
+    }
+}

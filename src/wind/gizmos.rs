@@ -1,0 +1,87 @@
+//! Debug drawing of the wind with gizmos (feature `gizmos`).
+
+use bevy::app::{App, Plugin, Update};
+use bevy::color::{Color, LinearRgba};
+use bevy::ecs::prelude::*;
+use bevy::gizmos::gizmos::Gizmos;
+use bevy::math::{Vec2, Vec3};
+
+use super::WindField;
+
+/// Draws a grid of wind arrows every frame while a [`WindField`] exists. Configure with the
+/// [`WindGizmos`] resource.
+pub struct WindGizmosPlugin;
+
+impl Plugin for WindGizmosPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<WindGizmos>().add_systems(
+            Update,
+            draw_wind_arrows.run_if(resource_exists::<WindField>),
+        );
+    }
+}
+
+/// Where and how [`WindGizmosPlugin`] draws its arrows.
+#[derive(Resource, Clone, Debug)]
+pub struct WindGizmos {
+    /// Draw at all.
+    pub enabled: bool,
+    /// Centre of the grid of arrows (x, z), m.
+    pub center: Vec2,
+    /// Half the sides of the grid along x and z, m.
+    pub half_extent: Vec2,
+    /// Distance between arrows, m.
+    pub spacing: f32,
+    /// Height of the arrows' tails, m.
+    pub height: f32,
+    /// Arrow length per m/s of wind, s.
+    pub seconds_per_length: f32,
+}
+
+impl Default for WindGizmos {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            center: Vec2::ZERO,
+            half_extent: Vec2::splat(20.0),
+            spacing: 2.0,
+            height: 1.0,
+            seconds_per_length: 0.3,
+        }
+    }
+}
+
+/// Colour classes of the free-fall paper's Fig. 13: speed V against the mean speed U at that
+/// height. Red V > 2U, pink U < V ≤ 2U, blue U/2 < V ≤ U, black V ≤ U/2 (drawn dark grey so it
+/// shows on dark ground).
+pub fn speed_class_color(speed: f32, mean: f32) -> Color {
+    let rgb = if speed > 2.0 * mean {
+        LinearRgba::rgb(1.0, 0.05, 0.05)
+    } else if speed > mean {
+        LinearRgba::rgb(1.0, 0.45, 0.7)
+    } else if speed > 0.5 * mean {
+        LinearRgba::rgb(0.15, 0.35, 1.0)
+    } else {
+        LinearRgba::rgb(0.08, 0.08, 0.08)
+    };
+    rgb.into()
+}
+
+fn draw_wind_arrows(config: Res<WindGizmos>, wind: Res<WindField>, mut gizmos: Gizmos) {
+    if !config.enabled || config.spacing <= 0.0 {
+        return;
+    }
+    let steps = (config.half_extent / config.spacing).floor().as_ivec2();
+    let mean = wind.mean_speed_at(config.height);
+    for i in -steps.x..=steps.x {
+        for k in -steps.y..=steps.y {
+            let xz = config.center + Vec2::new(i as f32, k as f32) * config.spacing;
+            let tail = Vec3::new(xz.x, config.height, xz.y);
+            let v = wind.velocity(tail);
+            let color = speed_class_color(v.length(), mean);
+            gizmos
+                .arrow(tail, tail + v * config.seconds_per_length, color)
+                .with_tip_length(0.25 * config.spacing);
+        }
+    }
+}
