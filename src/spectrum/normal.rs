@@ -5,7 +5,7 @@ use rand_pcg::Pcg64;
 use rustfft::num_complex::Complex;
 
 /// Standard complex normals `X + iY` (X, Y independent standard normal) from a PCG stream by
-/// Marsaglia's polar method, with the `libm` crate's pure-Rust `log` and `sqrt`, so the numbers
+/// Marsaglia's polar method in f32, with the `libm` crate's pure-Rust `logf` and `sqrtf`, so the numbers
 /// are the same on every platform (std's `ln` calls the platform's C library).
 pub(crate) struct NormalPairs(Pcg64);
 
@@ -15,13 +15,16 @@ impl NormalPairs {
     }
 
     pub(crate) fn next_pair(&mut self) -> Complex<f32> {
+        const SCALE: f32 = 1.0 / (1u32 << 23) as f32;
         loop {
-            let x = 2.0 * self.0.random::<f64>() - 1.0;
-            let y = 2.0 * self.0.random::<f64>() - 1.0;
+            // Two uniforms in [−1, 1) with 24 bits each, from one 64-bit draw.
+            let bits = self.0.random::<u64>();
+            let x = ((bits >> 40) as u32 as f32) * SCALE - 1.0;
+            let y = (((bits >> 8) & 0xFF_FFFF) as u32 as f32) * SCALE - 1.0;
             let s = x * x + y * y;
             if s > 0.0 && s < 1.0 {
-                let scale = libm::sqrt(-2.0 * libm::log(s) / s);
-                return Complex::new((x * scale) as f32, (y * scale) as f32);
+                let scale = libm::sqrtf(-2.0 * libm::logf(s) / s);
+                return Complex::new(x * scale, y * scale);
             }
         }
     }

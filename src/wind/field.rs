@@ -31,6 +31,10 @@ pub struct WindField {
     /// Unit-variance turbulence (u, v, w) per node, row-major over `[time?, x, y?, z]`.
     nodes: Vec<Vec3>,
     friction_velocity: f32,
+    /// 1 / nodes per axis.
+    inverse_dims: [f64; 4],
+    /// ln(h_ref/z0), the denominator of eq. 14.
+    log_reference: f32,
     sigma_u: f32,
     along: Vec3,
     across: Vec3,
@@ -48,6 +52,10 @@ impl WindField {
         validate_extra(&config)?;
         let dims = grid_dims(&config);
         let shape = GridShape::new(&dims);
+        let mut inverse_dims = [1.0; 4];
+        for (inverse, &n) in inverse_dims.iter_mut().zip(&dims) {
+            *inverse = 1.0 / n as f64;
+        }
         let synth = Synthesizer::new(&dims, config.beta, config.fft).map_err(|e| match e {
             SpectrumError::Beta(beta) => WindError::Invalid {
                 field: "beta",
@@ -72,6 +80,8 @@ impl WindField {
             shape,
             nodes,
             friction_velocity: 0.0,
+            inverse_dims,
+            log_reference: 1.0,
             sigma_u: 0.0,
             along: Vec3::X,
             across: Vec3::Z,
@@ -92,6 +102,7 @@ impl WindField {
             .turbulence_intensity
             .unwrap_or_else(|| profile::surface_layer_intensity(c.reference_height, c.roughness));
         self.sigma_u = intensity * c.reference_speed;
+        self.log_reference = profile::log_ratio(c.reference_height, c.roughness);
         let d = c.direction.normalize();
         self.along = Vec3::new(d.x, 0.0, d.y);
         self.across = self.along.cross(Vec3::Y);
@@ -179,24 +190,21 @@ impl WindField {
     fn sample(&self, position: Vec3, time: f64) -> Vec3 {
         let c = &self.config;
         let height = position.y;
-        // Mean speed, turbulence scale and advection speed at this height.
+        // Mean speed, turbulence scale and advection speed at this height; one logarithm.
+        let g = profile::log_ratio(height, c.roughness) / self.log_reference; // eq. 14
         let (mean, scale, advection) = match c.spatial {
-            SpatialMode::Plane => {
-                let g = profile::height_factor(height, c.reference_height, c.roughness);
-                (c.reference_speed * g, g, c.reference_speed)
-            }
+            SpatialMode::Plane => (c.reference_speed * g, g, c.reference_speed),
             SpatialMode::Volume { .. } => {
-                let g = profile::height_factor(height, c.reference_height, c.roughness);
-                let mean = self.mean_speed_at(height);
+                let mean = c.reference_speed * g; // = (u*/κ) ln(h/z0), eq. 10
                 (mean, g.min(1.0), mean)
             }
         };
         let time = if time.is_finite() { time } else { 0.0 };
         // Taylor's hypothesis: the pattern translates with the mean wind.
         let shift = f64::from(advection) * time;
-        let cell = f64::from(c.cell_size);
-        let x = (f64::from(position.x) - f64::from(self.along.x) * shift) / cell;
-        let z = (f64::from(position.z) - f64::from(self.along.z) * shift) / cell;
+        let per_cell = 1.0 / f64::from(c.cell_size);
+        let x = (f64::from(position.x) - f64::from(self.along.x) * shift) * per_cell;
+        let z = (f64::from(position.z) - f64::from(self.along.z) * shift) * per_cell;
         let mut coords = [0.0f64; 4];
         let mut axes = 0;
         if let TemporalMode::Evolving { samples, period } = c.temporal {
@@ -206,7 +214,7 @@ impl WindField {
         coords[axes] = x;
         axes += 1;
         if let SpatialMode::Volume { .. } = c.spatial {
-            coords[axes] = f64::from(position.y) / cell;
+            coords[axes] = f64::from(position.y) * per_cell;
             axes += 1;
         }
         coords[axes] = z;
@@ -224,8 +232,11 @@ impl WindField {
         let mut frac = [0.0f32; 4];
         for axis in 0..dims.len() {
             let n = dims[axis];
-            let c = if coords[axis].is_finite() {
-                coords[axis].rem_euclid(n as f64)
+            let len = n as f64;
+            // x − n⌊x/n⌋ rather than rem_euclid: floor is one instruction, fmod a libm call.
+            let c = coords[axis] - (coords[axis] * self.inverse_dims[axis]).floor() * len;
+            let c = if c.is_finite() {
+                c.clamp(0.0, len)
             } else {
                 0.0
             };

@@ -46,10 +46,9 @@ pub fn surface_layer_intensity(reference_height: f32, roughness: f32) -> f32 {
 }
 
 /// `max(0, ln(h/z0))`, finite for every input (`+∞` height is capped at `f32::MAX`).
-fn log_ratio(height: f32, roughness: f32) -> f32 {
+pub fn log_ratio(height: f32, roughness: f32) -> f32 {
     if height > roughness {
-        let ratio = f64::from(height.min(f32::MAX)).ln() - f64::from(roughness).ln();
-        ratio.max(0.0) as f32
+        (height.min(f32::MAX).ln() - roughness.ln()).max(0.0)
     } else {
         0.0
     }
