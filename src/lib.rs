@@ -3,11 +3,15 @@
 use bevy::app::{App, FixedUpdate, PluginGroup, PluginGroupBuilder};
 use bevy::ecs::schedule::{IntoScheduleConfigs, SystemSet};
 
+pub mod cloth;
 pub mod spectrum;
 pub mod wind;
 
 /// The most used types.
 pub mod prelude {
+    pub use crate::cloth::{
+        Cloth, ClothAttachment, ClothGrid, ClothParams, ClothPlugin, ClothPreset, ClothState,
+    };
     pub use crate::spectrum::fbm;
     pub use crate::wind::{
         SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin,
@@ -23,7 +27,9 @@ pub struct WindfallPlugins;
 
 impl PluginGroup for WindfallPlugins {
     fn build(self) -> PluginGroupBuilder {
-        let group = PluginGroupBuilder::start::<Self>().add(wind::WindPlugin::default());
+        let group = PluginGroupBuilder::start::<Self>()
+            .add(wind::WindPlugin::default())
+            .add(cloth::ClothPlugin);
         #[cfg(feature = "gizmos")]
         let group = group.add(wind::WindGizmosPlugin);
         group

@@ -197,7 +197,11 @@ mod tests {
         let mut dirs = vec![Vec2::ZERO; n];
         filter.directions(&smooth, &mut dirs);
         for (d, &theta) in dirs.iter().zip(&smooth) {
-            assert!((d.to_angle() - theta).abs() < 0.05, "{} vs {theta}", d.to_angle());
+            assert!(
+                (d.to_angle() - theta).abs() < 0.05,
+                "{} vs {theta}",
+                d.to_angle()
+            );
         }
         let straight = vec![0.25; n];
         let mut filter = DescriptorFilter::new(n, HarmonicFilter::BandPass { min: 3, max: 7 });

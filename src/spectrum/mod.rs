@@ -26,8 +26,10 @@ mod amplitude;
 mod fft;
 mod grid;
 mod normal;
+mod sample;
 mod synth;
 
 pub use fft::FftBackend;
 pub use grid::GridShape;
+pub use sample::periodic_lerp;
 pub use synth::{SpectrumError, Synthesizer, fbm, fbm_pair, try_fbm, try_fbm_pair};

@@ -5,7 +5,7 @@ use bevy::math::{Vec2, Vec3};
 
 use super::config::{SpatialMode, TemporalMode, WindConfig, WindError};
 use super::profile;
-use crate::spectrum::{GridShape, SpectrumError, Synthesizer};
+use crate::spectrum::{GridShape, SpectrumError, Synthesizer, periodic_lerp};
 
 /// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
 pub const MAX_REFERENCE_SPEED: f32 = 1.0e4;
@@ -31,8 +31,6 @@ pub struct WindField {
     /// Unit-variance turbulence (u, v, w) per node, row-major over `[time?, x, y?, z]`.
     nodes: Vec<Vec3>,
     friction_velocity: f32,
-    /// 1 / nodes per axis.
-    inverse_dims: [f64; 4],
     /// ln(h_ref/z0), the denominator of eq. 14.
     log_reference: f32,
     sigma_u: f32,
@@ -52,10 +50,6 @@ impl WindField {
         validate_extra(&config)?;
         let dims = grid_dims(&config);
         let shape = GridShape::new(&dims);
-        let mut inverse_dims = [1.0; 4];
-        for (inverse, &n) in inverse_dims.iter_mut().zip(&dims) {
-            *inverse = 1.0 / n as f64;
-        }
         let synth = Synthesizer::new(&dims, config.beta, config.fft).map_err(|e| match e {
             SpectrumError::Beta(beta) => WindError::Invalid {
                 field: "beta",
@@ -80,7 +74,6 @@ impl WindField {
             shape,
             nodes,
             friction_velocity: 0.0,
-            inverse_dims,
             log_reference: 1.0,
             sigma_u: 0.0,
             along: Vec3::X,
@@ -218,48 +211,10 @@ impl WindField {
             axes += 1;
         }
         coords[axes] = z;
-        let n = self.interpolate(&coords) * scale * self.sigma();
+        let n = periodic_lerp(&self.shape, &self.nodes, &coords[..self.shape.dims().len()])
+            * scale
+            * self.sigma();
         self.along * (mean + n.x) + self.across * n.y + Vec3::Y * n.z
-    }
-
-    /// Multilinear interpolation of the unit turbulence at node coordinates, wrapping every
-    /// axis; a non-finite coordinate is read as 0.
-    fn interpolate(&self, coords: &[f64; 4]) -> Vec3 {
-        let dims = self.shape.dims();
-        let strides = self.shape.strides();
-        let mut low = [0usize; 4];
-        let mut high = [0usize; 4];
-        let mut frac = [0.0f32; 4];
-        for axis in 0..dims.len() {
-            let n = dims[axis];
-            let len = n as f64;
-            // x − n⌊x/n⌋ rather than rem_euclid: floor is one instruction, fmod a libm call.
-            let c = coords[axis] - (coords[axis] * self.inverse_dims[axis]).floor() * len;
-            let c = if c.is_finite() {
-                c.clamp(0.0, len)
-            } else {
-                0.0
-            };
-            let i = (c.floor() as usize).min(n - 1);
-            low[axis] = i * strides[axis];
-            high[axis] = ((i + 1) % n) * strides[axis];
-            frac[axis] = (c - i as f64).clamp(0.0, 1.0) as f32;
-        }
-        // Corner offsets and weights, doubled one axis at a time (2 + 4 + … products, not d·2^d).
-        let mut corners = [(0usize, 1.0f32); 16];
-        let mut count = 1;
-        for axis in 0..dims.len() {
-            for c in 0..count {
-                let (offset, weight) = corners[c];
-                corners[c] = (offset + low[axis], weight * (1.0 - frac[axis]));
-                corners[c + count] = (offset + high[axis], weight * frac[axis]);
-            }
-            count *= 2;
-        }
-        corners[..count]
-            .iter()
-            .map(|&(offset, weight)| self.nodes[offset] * weight)
-            .sum()
     }
 }
 

@@ -21,6 +21,13 @@ pub fn headless_app() -> App {
     app
 }
 
+/// [`headless_app`] plus assets and meshes (no renderer), for parts that write meshes.
+pub fn headless_app_with_meshes() -> App {
+    let mut app = headless_app();
+    app.add_plugins((bevy::asset::AssetPlugin::default(), bevy::mesh::MeshPlugin));
+    app
+}
+
 /// Finishes plugin setup and runs the first (zero-time) update.
 pub fn ready(app: &mut App) {
     app.finish();

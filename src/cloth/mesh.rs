@@ -1,0 +1,85 @@
+//! The double-sided triangle mesh of a cloth, written in place each frame.
+
+use bevy::asset::RenderAssetUsages;
+use bevy::math::Vec3;
+use bevy::mesh::{Indices, Mesh, PrimitiveTopology, VertexAttributeValues};
+
+/// A double-sided mesh of a `rows × columns` node grid: the front side's vertices, then the
+/// back side's with flipped normals and reversed winding. UVs run along the yarns (u) and down
+/// the cloth (v). Kept in main-world memory so it can be rewritten every frame.
+pub fn cloth_mesh(rows: usize, columns: usize, positions: &[Vec3]) -> Mesh {
+    let count = rows * columns;
+    let mut uvs = Vec::with_capacity(2 * count);
+    for _side in 0..2 {
+        for k in 0..rows {
+            for j in 0..columns {
+                let v = if rows > 1 {
+                    k as f32 / (rows - 1) as f32
+                } else {
+                    0.0
+                };
+                uvs.push([j as f32 / (columns - 1).max(1) as f32, v]);
+            }
+        }
+    }
+    let mut indices = Vec::with_capacity(12 * rows.saturating_sub(1) * columns.saturating_sub(1));
+    for k in 0..rows.saturating_sub(1) {
+        for j in 0..columns.saturating_sub(1) {
+            let a = (k * columns + j) as u32;
+            let b = a + columns as u32;
+            let (c, d) = (a + 1, b + 1);
+            // Front: counter-clockwise seen from the front normal.
+            indices.extend([a, b, c, c, b, d]);
+            let o = count as u32;
+            indices.extend([a + o, c + o, b + o, c + o, d + o, b + o]);
+        }
+    }
+    let mut mesh = Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, vec![[0.0f32; 3]; 2 * count])
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, vec![[0.0f32, 0.0, 1.0]; 2 * count])
+    .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, uvs)
+    .with_inserted_indices(Indices::U32(indices));
+    write_cloth_mesh(&mut mesh, rows, columns, positions);
+    mesh
+}
+
+/// Rewrites the positions and normals of a mesh made by [`cloth_mesh`] in place.
+pub fn write_cloth_mesh(mesh: &mut Mesh, rows: usize, columns: usize, positions: &[Vec3]) {
+    let count = rows * columns;
+    if let Some(VertexAttributeValues::Float32x3(out)) =
+        mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)
+        && out.len() == 2 * count
+    {
+        for (i, p) in positions.iter().enumerate() {
+            out[i] = p.to_array();
+            out[i + count] = p.to_array();
+        }
+    }
+    if let Some(VertexAttributeValues::Float32x3(out)) = mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL)
+        && out.len() == 2 * count
+    {
+        for k in 0..rows {
+            for j in 0..columns {
+                let n = node_normal(positions, rows, columns, k, j);
+                out[k * columns + j] = n.to_array();
+                out[count + k * columns + j] = (-n).to_array();
+            }
+        }
+    }
+}
+
+/// Front normal of node (k, j): along-yarn tangent × upward tangent, by central differences
+/// (one-sided at the edges); +Z where the grid is degenerate.
+fn node_normal(positions: &[Vec3], rows: usize, columns: usize, k: usize, j: usize) -> Vec3 {
+    let at = |k: usize, j: usize| positions[k * columns + j];
+    let along = at(k, (j + 1).min(columns - 1)) - at(k, j.saturating_sub(1));
+    let up = if rows > 1 {
+        at(k.saturating_sub(1), j) - at((k + 1).min(rows - 1), j)
+    } else {
+        Vec3::Y
+    };
+    along.cross(up).try_normalize().unwrap_or(Vec3::Z)
+}

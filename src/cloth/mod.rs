@@ -1,0 +1,36 @@
+//! Cloth: flags, banners and curtains whose shape comes from P-type Fourier-descriptor yarns
+//! driven by 1/f^β noise angles (`fourier-descriptor-cloth-flapping.txt`).
+//!
+//! | step | what | source |
+//! |---|---|---|
+//! | noise | 2-D (frozen) or 3-D (non-frozen) 1/f^β matrix, scaled to [−θ, θ] | §3.1, §4 |
+//! | shift | the matrix moves |v| steps along and |u| across the yarns per frame | §4.1–4.2 |
+//! | descriptor | ω(j) = exp(iθ(j)), DFT, harmonic filter, inverse | eq. 2–6 |
+//! | yarns | equal segments along the filtered directions: length kept | eq. 2 |
+//! | pole edge | arc of the fixed edge, W1 and W2 | eq. 8 |
+//! | constraint | neighbouring yarns at most L apart, from the leading yarn | eq. 7 |
+//!
+//! The math lives in plain types ([`ClothSim`], [`DescriptorFilter`]); [`ClothPlugin`] moves
+//! every [`Cloth`] on the fixed timestep and rewrites its mesh once per rendered frame.
+
+mod constraints;
+mod descriptor;
+mod mesh;
+mod noise;
+mod params;
+mod plugin;
+mod presets;
+mod sim;
+
+pub use constraints::{align_to_leading_yarn, pole_edge};
+pub use descriptor::{
+    DescriptorFilter, HarmonicFilter, bend_angles, total_curvature, trace_yarn, yarn_from_angles,
+};
+pub use mesh::{cloth_mesh, write_cloth_mesh};
+pub use noise::NoiseSheet;
+pub use params::{
+    ClothError, ClothGrid, ClothParams, ClothWindModel, LeadingYarn, MAX_CLOTH_NODES,
+};
+pub use plugin::{Cloth, ClothInvalid, ClothPlugin, ClothState, wind_steps_per_frame};
+pub use presets::ClothPreset;
+pub use sim::{ClothAttachment, ClothSim, PAPER_FPS};

@@ -1,0 +1,61 @@
+//! Reading a periodic grid between its nodes.
+
+use std::ops::{Add, Mul};
+
+use super::grid::GridShape;
+
+/// Multilinear interpolation of `values` (row-major over `shape`, at most 4 axes) at node
+/// coordinates `coords`, every axis wrapping periodically. A non-finite coordinate reads as 0,
+/// so the result is finite whenever the values are.
+pub fn periodic_lerp<T>(shape: &GridShape, values: &[T], coords: &[f64]) -> T
+where
+    T: Copy + Mul<f32, Output = T> + Add<Output = T>,
+{
+    let dims = shape.dims();
+    let strides = shape.strides();
+    debug_assert!(dims.len() <= 4 && coords.len() == dims.len());
+    // Corner offsets and weights, doubled one axis at a time (2 + 4 + … products, not d·2^d).
+    let mut corners = [(0usize, 1.0f32); 16];
+    let mut count = 1;
+    for axis in 0..dims.len() {
+        let n = dims[axis];
+        let len = n as f64;
+        // x − n⌊x/n⌋ rather than rem_euclid: floor is one instruction, fmod a libm call.
+        let c = coords[axis] - (coords[axis] / len).floor() * len;
+        let c = if c.is_finite() {
+            c.clamp(0.0, len)
+        } else {
+            0.0
+        };
+        let i = (c as usize).min(n - 1);
+        let frac = (c - i as f64).clamp(0.0, 1.0) as f32;
+        let (low, high) = (i * strides[axis], (i + 1) % n * strides[axis]);
+        for c in 0..count {
+            let (offset, weight) = corners[c];
+            corners[c] = (offset + low, weight * (1.0 - frac));
+            corners[c + count] = (offset + high, weight * frac);
+        }
+        count *= 2;
+    }
+    let mut sum = values[corners[0].0] * corners[0].1;
+    for &(offset, weight) in &corners[1..count] {
+        sum = sum + values[offset] * weight;
+    }
+    sum
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reproduces_nodes_and_wraps() {
+        let shape = GridShape::new(&[3, 4]);
+        let values: Vec<f32> = (0..12).map(|i| i as f32).collect();
+        assert_eq!(periodic_lerp(&shape, &values, &[1.0, 2.0]), 6.0);
+        assert_eq!(periodic_lerp(&shape, &values, &[4.0, -2.0]), 6.0);
+        // Halfway between (2, 3) = 11 and its wrapped neighbour (0, 3) = 3.
+        assert!((periodic_lerp(&shape, &values, &[2.5, 3.0]) - 7.0).abs() < 1e-6);
+        assert!(periodic_lerp(&shape, &values, &[f64::NAN, 1e300]).is_finite());
+    }
+}
