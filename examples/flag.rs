@@ -112,7 +112,7 @@ fn setup(
         }),
         // Long pennant stripes along the yarns.
         banner: paint(&mut images, |u, v| {
-            if (v * 6.0) as u32 % 2 == 0 {
+            if ((v * 6.0) as u32).is_multiple_of(2) {
                 [200, 40, 40]
             } else if u < 0.1 {
                 [30, 30, 30]
