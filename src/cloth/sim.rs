@@ -145,12 +145,11 @@ impl ClothSim {
         for k in 0..rows {
             let row = k as f64 + self.across;
             let skew = f64::from(self.params.twist) * k as f64;
-            for (j, angle) in self.angles.iter_mut().enumerate() {
-                // Waves travel from the pole to the free edge: segment j now reads what
-                // segment j − Δ read Δ steps ago.
-                let column = j as f64 - self.along + skew;
-                *angle = amplitude * self.noise.sample(frame, row, column);
-            }
+            // Waves travel from the pole to the free edge: segment j now reads what segment
+            // j − Δ read Δ steps ago.
+            self.noise
+                .sample_line(frame, row, skew - self.along, &mut self.angles);
+            self.angles.iter_mut().for_each(|a| *a *= amplitude);
             self.filter.0.directions(&self.angles, &mut self.directions);
             let start = pole_edge(k, rows, spacing, self.params.bow, self.params.lean);
             trace_yarn(start, &self.directions, segment, &mut self.yarn);
