@@ -169,21 +169,7 @@ fn setup(
         Transform::default(),
     ));
     commands.insert_resource(textures);
-    commands.spawn((
-        InfoText,
-        Text::new(""),
-        TextFont {
-            font_size: FontSize::Px(18.0),
-            ..default()
-        },
-        TextColor(Color::BLACK),
-        Node {
-            position_type: PositionType::Absolute,
-            top: px(10),
-            left: px(12),
-            ..default()
-        },
-    ));
+    commands.spawn((InfoText, common::info_text()));
     commands.insert_resource(Current(current.0));
     commands.queue(|world: &mut World| {
         let scene = world.resource::<Current>().0;

@@ -121,21 +121,7 @@ fn setup(
             Transform::from_translation(p),
         ));
     }
-    commands.spawn((
-        InfoText,
-        Text::new(""),
-        TextFont {
-            font_size: FontSize::Px(18.0),
-            ..default()
-        },
-        TextColor(Color::BLACK),
-        Node {
-            position_type: PositionType::Absolute,
-            top: px(10),
-            left: px(12),
-            ..default()
-        },
-    ));
+    commands.spawn((InfoText, common::info_text()));
 }
 
 /// Tracers move with the wind: a forward-Euler step of dx/dt = V(x, t), on the fixed timestep.

@@ -95,3 +95,21 @@ fn frames_and_screenshot(
         exit.write(AppExit::Success);
     }
 }
+
+/// A block of black text in the top-left corner, for a scene's live figures and keys.
+pub fn info_text() -> impl Bundle {
+    (
+        Text::new(""),
+        TextFont {
+            font_size: FontSize::Px(18.0),
+            ..default()
+        },
+        TextColor(Color::BLACK),
+        Node {
+            position_type: PositionType::Absolute,
+            top: px(10),
+            left: px(12),
+            ..default()
+        },
+    )
+}

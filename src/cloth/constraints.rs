@@ -25,14 +25,15 @@ pub fn align_to_leading_yarn(
     leading: usize,
     max_distance: f32,
 ) {
+    let max_squared = max_distance * max_distance;
     let pull = |positions: &mut [Vec3], k: usize, toward: usize| {
         for j in 1..columns {
             let anchor = positions[toward * columns + j];
             let node = &mut positions[k * columns + j];
             let r = *node - anchor;
-            let distance = r.length();
-            if distance > max_distance && distance.is_finite() {
-                *node = anchor + r * (max_distance / distance);
+            let squared = r.length_squared();
+            if squared > max_squared && squared.is_finite() {
+                *node = anchor + r * (max_distance / squared.sqrt());
             }
         }
     };

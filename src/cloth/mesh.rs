@@ -46,7 +46,9 @@ pub fn cloth_mesh(rows: usize, columns: usize, positions: &[Vec3]) -> Mesh {
     mesh
 }
 
-/// Rewrites the positions and normals of a mesh made by [`cloth_mesh`] in place.
+/// Rewrites the positions and normals of a mesh made by [`cloth_mesh`] in place. Front normals
+/// are along-yarn tangent × upward tangent by central differences (one-sided at the edges), +Z
+/// where the grid is degenerate.
 pub fn write_cloth_mesh(mesh: &mut Mesh, rows: usize, columns: usize, positions: &[Vec3]) {
     let count = rows * columns;
     if let Some(VertexAttributeValues::Float32x3(out)) =
@@ -61,25 +63,25 @@ pub fn write_cloth_mesh(mesh: &mut Mesh, rows: usize, columns: usize, positions:
     if let Some(VertexAttributeValues::Float32x3(out)) = mesh.attribute_mut(Mesh::ATTRIBUTE_NORMAL)
         && out.len() == 2 * count
     {
+        let (front, back) = out.split_at_mut(count);
         for k in 0..rows {
-            for j in 0..columns {
-                let n = node_normal(positions, rows, columns, k, j);
-                out[k * columns + j] = n.to_array();
-                out[count + k * columns + j] = (-n).to_array();
+            // Rows above and below (the row itself at an edge): one-sided differences there.
+            let above = &positions[k.saturating_sub(1) * columns..][..columns];
+            let below = &positions[(k + 1).min(rows - 1) * columns..][..columns];
+            let row = &positions[k * columns..][..columns];
+            let normals = front[k * columns..][..columns].iter_mut();
+            let flipped = back[k * columns..][..columns].iter_mut();
+            for (j, (n, b)) in normals.zip(flipped).enumerate() {
+                let along = row[(j + 1).min(columns - 1)] - row[j.saturating_sub(1)];
+                let up = if rows > 1 {
+                    above[j] - below[j]
+                } else {
+                    Vec3::Y
+                };
+                let normal = along.cross(up).normalize_or(Vec3::Z);
+                *n = normal.to_array();
+                *b = (-normal).to_array();
             }
         }
     }
-}
-
-/// Front normal of node (k, j): along-yarn tangent × upward tangent, by central differences
-/// (one-sided at the edges); +Z where the grid is degenerate.
-fn node_normal(positions: &[Vec3], rows: usize, columns: usize, k: usize, j: usize) -> Vec3 {
-    let at = |k: usize, j: usize| positions[k * columns + j];
-    let along = at(k, (j + 1).min(columns - 1)) - at(k, j.saturating_sub(1));
-    let up = if rows > 1 {
-        at(k.saturating_sub(1), j) - at((k + 1).min(rows - 1), j)
-    } else {
-        Vec3::Y
-    };
-    along.cross(up).try_normalize().unwrap_or(Vec3::Z)
 }

@@ -57,10 +57,17 @@ impl NoiseSheet {
         }
     }
 
-    /// Fills `out[j]` with the value at (frame, row, first_column + j) for every j: one line of
+    /// Fills `out[j]` with `scale` times the value at (frame, row, first_column + j) for every j: one line of
     /// the sheet read at a fractional offset. The interpolation weights are the same for the
     /// whole line, so this is much cheaper than [`Self::sample`] per node.
-    pub fn sample_line(&self, frame: f64, row: f64, first_column: f64, out: &mut [f32]) {
+    pub fn sample_line(
+        &self,
+        frame: f64,
+        row: f64,
+        first_column: f64,
+        scale: f32,
+        out: &mut [f32],
+    ) {
         let (frames, rows, columns) = self.size();
         let split = |x: f64, n: usize| -> (usize, usize, f32) {
             let len = n as f64;
@@ -88,15 +95,16 @@ impl NoiseSheet {
             ((f1 * rows + r1) * columns, tf * tr),
         ];
         let used = if frames > 1 { 4 } else { 2 };
-        let mut c = c0;
-        for value in out.iter_mut() {
-            let next = if c + 1 == columns { 0 } else { c + 1 };
-            let mut v = 0.0;
-            for &(base, weight) in &lines[..used] {
-                v += weight * ((1.0 - tc) * self.values[base + c] + tc * self.values[base + next]);
+        out.fill(0.0);
+        for &(base, weight) in &lines[..used] {
+            let line = &self.values[base..base + columns];
+            let (a, b) = (scale * weight * (1.0 - tc), scale * weight * tc);
+            let mut c = c0;
+            for value in out.iter_mut() {
+                let next = if c + 1 == columns { 0 } else { c + 1 };
+                *value += a * line[c] + b * line[next];
+                c = next;
             }
-            *value = v;
-            c = next;
         }
     }
 
@@ -120,7 +128,7 @@ mod tests {
             let sheet = NoiseSheet::new(frames, 6, 10, 2.0, 3).unwrap();
             let mut line = vec![0.0; 23];
             for (frame, row, start) in [(0.0, 0.0, 0.0), (1.3, 2.7, -4.25), (7.9, -1.5, 13.6)] {
-                sheet.sample_line(frame, row, start, &mut line);
+                sheet.sample_line(frame, row, start, 1.0, &mut line);
                 for (j, v) in line.iter().enumerate() {
                     let p = sheet.sample(frame, row, start + j as f64);
                     assert!((v - p).abs() < 1e-5, "{frames} {j}: {v} vs {p}");

@@ -147,9 +147,9 @@ impl ClothSim {
             let skew = f64::from(self.params.twist) * k as f64;
             // Waves travel from the pole to the free edge: segment j now reads what segment
             // j − Δ read Δ steps ago.
+            let first = skew - self.along;
             self.noise
-                .sample_line(frame, row, skew - self.along, &mut self.angles);
-            self.angles.iter_mut().for_each(|a| *a *= amplitude);
+                .sample_line(frame, row, first, amplitude, &mut self.angles);
             self.filter.0.directions(&self.angles, &mut self.directions);
             let start = pole_edge(k, rows, spacing, self.params.bow, self.params.lean);
             trace_yarn(start, &self.directions, segment, &mut self.yarn);
