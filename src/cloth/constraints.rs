@@ -9,7 +9,7 @@ use super::sim::edge_angle;
 /// constant offset removed so the top node sits at the pole:
 /// along = W1·(−cos(γ + α_k)) = W1·sin α_k (the edge bows downwind, most at its middle), and
 /// across = −W2·γ·α_k (the edge leans sideways). The row itself is placed by the caller.
-pub fn pole_edge(k: usize, rows: usize, _spacing: f32, bow: f32, lean: f32) -> Vec2 {
+pub fn pole_edge(k: usize, rows: usize, bow: f32, lean: f32) -> Vec2 {
     let (gamma, alpha) = edge_angle(k, rows);
     Vec2::new(-bow * (gamma + alpha).cos(), -lean * gamma * alpha)
 }

@@ -118,13 +118,12 @@ impl ClothSim {
         let swirl = f64::from(self.params.swirl) * f64::from(PAPER_FPS) * dt;
         if steps.is_finite() && swirl.is_finite() && dt.is_finite() {
             // Keep the offsets within one period of the noise so f64 precision never runs out.
-            let (frames, rows, columns) = self.noise.size();
+            let (_, rows, columns) = self.noise.size();
             self.along = (self.along + steps).rem_euclid(columns as f64);
             self.across = (self.across + swirl).rem_euclid(rows as f64);
             if let ClothWindModel::NonFrozen { period, .. } = self.params.model {
                 self.time = (self.time + dt).rem_euclid(f64::from(period));
             }
-            let _ = frames;
         }
     }
 
@@ -151,7 +150,7 @@ impl ClothSim {
             self.noise
                 .sample_line(frame, row, first, amplitude, &mut self.angles);
             self.filter.0.directions(&self.angles, &mut self.directions);
-            let start = pole_edge(k, rows, spacing, self.params.bow, self.params.lean);
+            let start = pole_edge(k, rows, self.params.bow, self.params.lean);
             trace_yarn(start, &self.directions, segment, &mut self.yarn);
             for (j, p) in self.yarn.iter().enumerate() {
                 self.positions[k * columns + j] = self.to_local(*p, k, spacing);
