@@ -4,6 +4,7 @@ use bevy::app::{App, FixedUpdate, PluginGroup, PluginGroupBuilder};
 use bevy::ecs::schedule::{IntoScheduleConfigs, SystemSet};
 
 pub mod cloth;
+pub mod freefall;
 pub mod spectrum;
 pub mod wind;
 
@@ -11,6 +12,10 @@ pub mod wind;
 pub mod prelude {
     pub use crate::cloth::{
         Cloth, ClothAttachment, ClothGrid, ClothParams, ClothPlugin, ClothPreset, ClothState,
+    };
+    pub use crate::freefall::{
+        FallState, FallingObject, Fluid, FreeFallPlugin, FreeFallSettings, Landed, PrimitiveMotion,
+        Shape,
     };
     pub use crate::spectrum::fbm;
     pub use crate::wind::{
@@ -29,6 +34,7 @@ impl PluginGroup for WindfallPlugins {
     fn build(self) -> PluginGroupBuilder {
         let group = PluginGroupBuilder::start::<Self>()
             .add(wind::WindPlugin::default())
+            .add(freefall::FreeFallPlugin)
             .add(cloth::ClothPlugin);
         #[cfg(feature = "gizmos")]
         let group = group.add(wind::WindGizmosPlugin);

@@ -1,0 +1,207 @@
+//! The Markov chain of primitive motions (§3.1–3.2, eq. 9).
+
+use thiserror::Error;
+
+use super::random::FallRng;
+use super::regime::PrimitiveMotion;
+
+/// Why a transition matrix was rejected. `row` is 0-based (L1 = 0); the initial distribution is
+/// reported as row `None`.
+#[derive(Clone, Copy, Debug, PartialEq, Error)]
+pub enum MarkovError {
+    /// An entry is negative or not finite.
+    #[error("row {row:?}, column {column}: probability {value} must be finite and ≥ 0")]
+    Negative {
+        /// Offending row.
+        row: Option<usize>,
+        /// Offending column.
+        column: usize,
+        /// The entry.
+        value: f32,
+    },
+    /// A row does not sum to 1 within 1e-6.
+    #[error("row {row:?} sums to {sum}, not 1")]
+    RowSum {
+        /// Offending row.
+        row: Option<usize>,
+        /// Its sum.
+        sum: f32,
+    },
+    /// A transition to a lower-numbered motion, which the paper's hypothesis (§3.1) forbids.
+    #[error("row {row}: backward transition to column {column} (p = {value})")]
+    Backward {
+        /// Offending row.
+        row: usize,
+        /// The lower state.
+        column: usize,
+        /// The entry.
+        value: f32,
+    },
+}
+
+impl MarkovError {
+    /// The offending row (`None`: the initial distribution).
+    pub fn row(&self) -> Option<usize> {
+        match *self {
+            Self::Negative { row, .. } | Self::RowSum { row, .. } => row,
+            Self::Backward { row, .. } => Some(row),
+        }
+    }
+}
+
+/// First-order discrete-time Markov chain over L1..L6 (§3.2): where a fall starts, and
+/// p_ij = P[next motion L_j | current motion L_i], one step per motion segment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MarkovChain {
+    initial: [f32; 6],
+    transitions: [[f32; 6]; 6],
+}
+
+impl Default for MarkovChain {
+    /// Our default (the paper's Fig. 11 numbers are not in its text). Rows L1..L6:
+    ///
+    /// | from \ to | L1 | L2 | L3 | L4 | L5 | L6 |
+    /// |---|---|---|---|---|---|---|
+    /// | start | .35 | .30 | .10 | .15 | .05 | .05 |
+    /// | L1 SD | .40 | .30 | .10 | .10 | .05 | .05 |
+    /// | L2 PF | 0 | .70 | .10 | .10 | .05 | .05 |
+    /// | L3 TC | 0 | 0 | .50 | .30 | .10 | .10 |
+    /// | L4 PT | 0 | 0 | 0 | .75 | .15 | .10 |
+    /// | L5 TH | 0 | 0 | 0 | 0 | .80 | .20 |
+    /// | L6 PS | 0 | 0 | 0 | 0 | 0 | 1 |
+    ///
+    /// A release usually starts steady or fluttering, and a motion lasts a few segments
+    /// (1 / (1 − p_ii) on average) before the next.
+    fn default() -> Self {
+        Self {
+            initial: [0.35, 0.30, 0.10, 0.15, 0.05, 0.05],
+            transitions: [
+                [0.40, 0.30, 0.10, 0.10, 0.05, 0.05],
+                [0.0, 0.70, 0.10, 0.10, 0.05, 0.05],
+                [0.0, 0.0, 0.50, 0.30, 0.10, 0.10],
+                [0.0, 0.0, 0.0, 0.75, 0.15, 0.10],
+                [0.0, 0.0, 0.0, 0.0, 0.80, 0.20],
+                [0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+            ],
+        }
+    }
+}
+
+impl MarkovChain {
+    /// A validated chain: entries finite and ≥ 0, every row (and `initial`) summing to 1 within
+    /// 1e-6, and no entry below the diagonal above zero.
+    pub fn new(initial: [f32; 6], transitions: [[f32; 6]; 6]) -> Result<Self, MarkovError> {
+        check_row(None, &initial)?;
+        for (i, row) in transitions.iter().enumerate() {
+            check_row(Some(i), row)?;
+            if let Some((column, &value)) = row[..i].iter().enumerate().find(|(_, p)| **p > 0.0) {
+                return Err(MarkovError::Backward {
+                    row: i,
+                    column,
+                    value,
+                });
+            }
+        }
+        Ok(Self {
+            initial,
+            transitions,
+        })
+    }
+
+    /// Where falls start.
+    pub fn initial(&self) -> &[f32; 6] {
+        &self.initial
+    }
+
+    /// The matrix P = (p_ij).
+    pub fn transitions(&self) -> &[[f32; 6]; 6] {
+        &self.transitions
+    }
+
+    /// The chain an object with main motion `main` follows: states above `main` are out of
+    /// reach (eq. 9 counts the motion classes of L1..L_k), so a step that would go past `main`
+    /// goes to `main`, which then holds.
+    pub fn bounded(&self, main: PrimitiveMotion) -> BoundedChain {
+        let k = main.index();
+        let collapse = |row: &[f32; 6]| {
+            let mut out = [0.0f32; 6];
+            out[..k].copy_from_slice(&row[..k]);
+            out[k] = row[k..].iter().sum();
+            cumulative(&out)
+        };
+        let mut rows = [[1.0f32; 6]; 6];
+        for (i, row) in self.transitions.iter().enumerate().take(k + 1) {
+            rows[i] = collapse(row);
+        }
+        BoundedChain {
+            main,
+            initial: collapse(&self.initial),
+            rows,
+        }
+    }
+}
+
+/// Number of motion classes of a fall whose main motion is L_k (eq. 9): Σ_{i=1..k} C(k, i) =
+/// 2^k − 1, the non-empty increasing sequences of L1..L_k.
+pub fn motion_class_count(main: PrimitiveMotion) -> u32 {
+    (1u32 << (main.index() + 1)) - 1
+}
+
+/// A [`MarkovChain`] limited to L1..main, with cumulative rows for sampling.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoundedChain {
+    main: PrimitiveMotion,
+    initial: [f32; 6],
+    rows: [[f32; 6]; 6],
+}
+
+impl BoundedChain {
+    /// The upper bound (and absorbing state).
+    pub fn main(&self) -> PrimitiveMotion {
+        self.main
+    }
+
+    /// Draws the first motion.
+    pub fn start(&self, rng: &mut FallRng) -> PrimitiveMotion {
+        draw(&self.initial, rng.uniform())
+    }
+
+    /// Draws the motion after `current` (never lower, never above `main`).
+    pub fn next(&self, current: PrimitiveMotion, rng: &mut FallRng) -> PrimitiveMotion {
+        let current = current.min(self.main);
+        draw(&self.rows[current.index()], rng.uniform()).max(current)
+    }
+}
+
+fn draw(cdf: &[f32; 6], u: f32) -> PrimitiveMotion {
+    let index = cdf.iter().position(|&c| u < c).unwrap_or_else(|| {
+        // u above the rounded total: the last state with any probability.
+        cdf.iter().rposition(|&c| c > 0.0).unwrap_or(0)
+    });
+    PrimitiveMotion::from_index(index)
+}
+
+fn cumulative(row: &[f32; 6]) -> [f32; 6] {
+    let mut out = [0.0; 6];
+    let mut sum = 0.0;
+    for (o, p) in out.iter_mut().zip(row) {
+        sum += p;
+        *o = if *p > 0.0 { sum } else { -1.0 };
+    }
+    out
+}
+
+fn check_row(row: Option<usize>, values: &[f32; 6]) -> Result<(), MarkovError> {
+    if let Some((column, &value)) = values
+        .iter()
+        .enumerate()
+        .find(|(_, p)| !(p.is_finite() && **p >= 0.0))
+    {
+        return Err(MarkovError::Negative { row, column, value });
+    }
+    let sum: f32 = values.iter().map(|&p| f64::from(p)).sum::<f64>() as f32;
+    if (sum - 1.0).abs() > 1e-6 {
+        return Err(MarkovError::RowSum { row, sum });
+    }
+    Ok(())
+}

@@ -1,0 +1,48 @@
+//! Free fall: leaves, paper and coins falling through still or moving air and water
+//! (`free-fall-motion-synthesis.txt`).
+//!
+//! | step | what | source |
+//! |---|---|---|
+//! | regime | Re = U L / ν, I*, U = √((ρ_s/ρ_f − 1) g b) | eq. 1–3 |
+//! | phase diagram | (Re, I*) → main motion L1..L6 ([`PHASE_DIAGRAM`]) | §2.1, Fig. 3 |
+//! | database | swings of eq. 5 cut at turning points, k-means on feature vectors, angles from eq. 4 by RK4 | §2.2 |
+//! | search tree | glide left / right: fluttering, chaotic (r ∈ [1/10, 10]), tumbling | §2.3.1, Fig. 7 |
+//! | unified function | steady descent, helix, spiral | eq. 6 |
+//! | amplitudes | A₀ = D U / (h Ω) | eq. 7–8 |
+//! | Markov chain | L_i → L_j, j ≥ i, bounded by the main motion | §3, eq. 9 |
+//! | wind | p ← p + u(p) dt + Δf, Bézier-smoothed; tilt θ = W N(t) | §4.2, eq. 15 |
+//!
+//! | quantity | unit |
+//! |---|---|
+//! | sizes L, a, b | m |
+//! | densities ρ_s, ρ_f | kg/m³ |
+//! | ν | m²/s |
+//! | U | m/s |
+//! | Ω | rad/s |
+//!
+//! The math is in plain types ([`regime()`], [`TrajectoryDatabase`], [`FallPath`], [`ode`]);
+//! [`FreeFallPlugin`] moves every [`FallingObject`] on the fixed timestep.
+
+mod database;
+mod markov;
+mod motion;
+pub mod ode;
+mod path;
+mod plugin;
+mod random;
+mod regime;
+
+pub use database::{DatabaseConfig, SEGMENT_SAMPLES, Segment, TrajectoryDatabase, kmeans};
+pub use markov::{BoundedChain, MarkovChain, MarkovError, motion_class_count};
+pub use motion::{
+    CHAOTIC_SCALE, FallScales, Glide, MIN_PIECE, MOTION_SHAPES, MotionShape, Piece, next_glide,
+};
+pub use path::{FallPath, StepOutcome, WindTilt};
+pub use plugin::{
+    FallDatabase, FallState, FallingObject, FreeFallPlugin, FreeFallSettings, Landed,
+};
+pub use random::FallRng;
+pub use regime::{
+    Fluid, FreeFallError, MAX_DENSITY_RATIO, MAX_SIZE, MIN_SIZE, PHASE_DIAGRAM, PhaseRegion,
+    PrimitiveMotion, Regime, Shape, classify, regime,
+};

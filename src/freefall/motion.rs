@@ -1,0 +1,346 @@
+//! Primitive motions (§2.3): swings assembled by the trajectory search tree for fluttering,
+//! chaotic and tumbling motion, and the unified trajectory function (eq. 6) for steady descent,
+//! helix and spiral. Amplitudes from eq. 7–8.
+
+use std::f32::consts::PI;
+
+use bevy::math::{Quat, Vec2, Vec3};
+
+use super::database::{SEGMENT_SAMPLES, TrajectoryDatabase};
+use super::random::FallRng;
+use super::regime::PrimitiveMotion;
+
+/// Per-motion constants of eq. 6–8. `deviation` is B_i of eq. 7 (the deviation coefficient k
+/// is [`FallScales::deviation`]); `rate` multiplies the swing rate Ω; `eccentricity` is ε_e and
+/// `lobes` is k of eq. 6.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MotionShape {
+    /// B_i: half the sideways excursion per swing (or the circle radius), in object lengths L.
+    pub deviation: f32,
+    /// Ω of the motion in units of the swing rate.
+    pub rate: f32,
+    /// ε_e of eq. 6.
+    pub eccentricity: f32,
+    /// k of eq. 6.
+    pub lobes: f32,
+}
+
+/// L1..L6. Eq. 6 with ε_e → 0, k = 1 is the spiral; ε_e ≠ 0, k = 4 the helix (an eight-petal
+/// rose from above); A_e → 0 steady descent. Values are ours (the paper gives none), chosen so
+/// the paths look like Fig. 1 and Fig. 9.
+pub const MOTION_SHAPES: [MotionShape; 6] = [
+    MotionShape {
+        deviation: 0.0,
+        rate: 1.0,
+        eccentricity: 0.0,
+        lobes: 0.0,
+    },
+    MotionShape {
+        deviation: 0.6,
+        rate: 1.0,
+        eccentricity: 0.0,
+        lobes: 0.0,
+    },
+    MotionShape {
+        deviation: 0.6,
+        rate: 1.0,
+        eccentricity: 0.0,
+        lobes: 0.0,
+    },
+    MotionShape {
+        deviation: 1.5,
+        rate: 1.0,
+        eccentricity: 0.0,
+        lobes: 0.0,
+    },
+    MotionShape {
+        deviation: 0.5,
+        rate: 0.5,
+        eccentricity: 0.3,
+        lobes: 4.0,
+    },
+    MotionShape {
+        deviation: 0.8,
+        rate: 0.5,
+        eccentricity: 0.0,
+        lobes: 1.0,
+    },
+];
+
+/// Range of the chaotic scale r (§2.3.2).
+pub const CHAOTIC_SCALE: (f32, f32) = (0.1, 10.0);
+
+/// The sizes of one fall.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FallScales {
+    /// U of eq. 3, m/s.
+    pub descent_speed: f32,
+    /// Ω, rad/s: U / a, eq. 8's Ω ∼ √(b/a) in units of √(g/a) (U/a = √((ρ_s/ρ_f − 1) b/a) √(g/a)).
+    pub swing_rate: f32,
+    /// L, m.
+    pub length: f32,
+    /// k of eq. 7 (1 by default).
+    pub deviation: f32,
+}
+
+impl FallScales {
+    /// A₀ of eq. 8 for `motion`. Eq. 7 read with the release height the text says it is linear
+    /// in, D_i = k B_i h L / a, gives A₀ = D_i U / (h Ω) = k B_i L U / (a Ω) = k B_i L with
+    /// Ω = U / a: the release height cancels.
+    pub fn amplitude(&self, motion: PrimitiveMotion) -> f32 {
+        self.deviation * MOTION_SHAPES[motion.index()].deviation * self.length
+    }
+
+    /// Time of one swing (and one Markov step), s.
+    pub fn swing_time(&self) -> f32 {
+        PI / self.swing_rate
+    }
+}
+
+/// Which way a swing glides along the heading (the search tree's two children, Fig. 7).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Glide {
+    /// gl.
+    Left,
+    /// gr.
+    Right,
+}
+
+impl Glide {
+    /// −1 or +1.
+    pub fn sign(self) -> f32 {
+        match self {
+            Self::Left => -1.0,
+            Self::Right => 1.0,
+        }
+    }
+
+    fn flip(self) -> Self {
+        match self {
+            Self::Left => Self::Right,
+            Self::Right => Self::Left,
+        }
+    }
+}
+
+/// One node of the trajectory search tree (§2.3.1): the child to take after `previous` and its
+/// scale r. Fluttering alternates (gl, gr, gl, ...); tumbling keeps one side; chaotic motion
+/// takes either side at random with r from a log-normal clamped to [1/10, 10], so it flutters
+/// with changing amplitude and tumbles when it repeats a side.
+pub fn next_glide(motion: PrimitiveMotion, previous: Glide, rng: &mut FallRng) -> (Glide, f32) {
+    match motion {
+        PrimitiveMotion::Tumbling => (previous, 1.0),
+        PrimitiveMotion::Chaotic => {
+            // σ = ln(10)/3: r = 10 is three standard deviations out.
+            let r = (rng.normal() * std::f32::consts::LN_10 / 3.0).exp();
+            let glide = if rng.coin() {
+                previous
+            } else {
+                previous.flip()
+            };
+            (glide, r.clamp(CHAOTIC_SCALE.0, CHAOTIC_SCALE.1))
+        }
+        _ => (previous.flip(), 1.0),
+    }
+}
+
+/// A stretch of still-fluid motion, evaluated relative to its start.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Piece {
+    /// A database segment along the heading.
+    Swing {
+        /// Database index.
+        segment: u32,
+        /// +1 right, −1 left.
+        sign: f32,
+        /// Metres per database unit, horizontal and vertical.
+        scale: Vec2,
+        /// s.
+        duration: f32,
+        /// End over end (tumbling) rather than rocking (fluttering).
+        tumble: bool,
+        /// Plate angle at the start of a tumbling swing, rad.
+        theta0: f32,
+    },
+    /// Eq. 6 from curve time `start`.
+    Curve {
+        /// A_e, m.
+        amplitude: f32,
+        /// ε_e.
+        eccentricity: f32,
+        /// k.
+        lobes: f32,
+        /// Ω, rad/s.
+        rate: f32,
+        /// U, m/s.
+        descent: f32,
+        /// Curve time at the piece's start, s.
+        start: f32,
+        /// s.
+        duration: f32,
+    },
+}
+
+impl Piece {
+    /// A swing for `motion` (fluttering, chaotic or tumbling) found in `db` by its feature vector.
+    pub fn swing(
+        db: &TrajectoryDatabase,
+        scales: &FallScales,
+        motion: PrimitiveMotion,
+        glide: Glide,
+        r: f32,
+        theta0: f32,
+        rng: &mut FallRng,
+    ) -> Self {
+        // In database units (length U/Ω): V = r (2 A₀ Ω / U, −π).
+        let unit = scales.descent_speed / scales.swing_rate;
+        let sideways = 2.0 * scales.amplitude(motion) / unit.max(1e-12);
+        let segment = db.find(Vec2::new(sideways, -PI), rng);
+        let seg_x = db.segment(segment).feature().x.max(1e-6);
+        Self::Swing {
+            segment,
+            sign: glide.sign(),
+            scale: Vec2::new(r * sideways * unit / seg_x, r * unit),
+            duration: (r * scales.swing_time()).max(MIN_PIECE),
+            tumble: motion == PrimitiveMotion::Tumbling,
+            theta0,
+        }
+    }
+
+    /// Eq. 6 for steady descent, helix or spiral.
+    pub fn curve(scales: &FallScales, motion: PrimitiveMotion, start: f32) -> Self {
+        let shape = MOTION_SHAPES[motion.index()];
+        Self::Curve {
+            amplitude: scales.amplitude(motion),
+            eccentricity: shape.eccentricity,
+            lobes: shape.lobes,
+            rate: shape.rate * scales.swing_rate,
+            descent: scales.descent_speed,
+            start,
+            duration: scales.swing_time().max(MIN_PIECE),
+        }
+    }
+
+    /// Length, s.
+    pub fn duration(&self) -> f32 {
+        match *self {
+            Self::Swing { duration, .. } | Self::Curve { duration, .. } => duration,
+        }
+    }
+
+    /// Displacement since the start at piece time `t` (beyond the end a swing continues in a
+    /// straight line at its final velocity, a curve continues eq. 6), in the frame where x is
+    /// the heading, y up and z the heading × up.
+    pub fn offset(&self, db: &TrajectoryDatabase, t: f32) -> Vec3 {
+        match *self {
+            Self::Swing {
+                segment,
+                sign,
+                scale,
+                duration,
+                ..
+            } => {
+                let points = &db.segment(segment).points;
+                let (p, velocity_tail) = sample_points(points, t / duration);
+                let p = p + velocity_tail;
+                Vec3::new(sign * p.x * scale.x, p.y * scale.y, 0.0)
+            }
+            Self::Curve { start, .. } => self.curve_at(start + t) - self.curve_at(start),
+        }
+    }
+
+    fn curve_at(&self, time: f32) -> Vec3 {
+        let Self::Curve {
+            amplitude,
+            eccentricity,
+            lobes,
+            rate,
+            descent,
+            ..
+        } = *self
+        else {
+            return Vec3::ZERO;
+        };
+        let phase = rate * time;
+        let radius = amplitude * (1.0 + eccentricity * (lobes * phase).sin());
+        let (s, c) = phase.sin_cos();
+        Vec3::new(radius * c, -descent * time, radius * s)
+    }
+
+    /// The plate's tilt at piece time `t` as a rotation in the same frame (applied after the
+    /// object's yaw): about z by the ODE angle for swings; for curves, leaning into the
+    /// horizontal velocity by half its glide angle.
+    pub fn tilt(&self, db: &TrajectoryDatabase, t: f32) -> Quat {
+        match *self {
+            Self::Swing {
+                segment,
+                sign,
+                duration,
+                tumble,
+                theta0,
+                ..
+            } => {
+                let seg = db.segment(segment);
+                let s = (t / duration).clamp(0.0, 1.0);
+                let angle = if tumble {
+                    theta0 + sign * sample_angles(&seg.tumble, s)
+                } else {
+                    sign * sample_angles(&seg.flutter, s)
+                };
+                Quat::from_rotation_z(angle)
+            }
+            Self::Curve { start, descent, .. } => {
+                let h = 1e-3;
+                let v = (self.curve_at(start + t + h) - self.curve_at(start + t)) / h;
+                let horizontal = Vec2::new(v.x, v.z);
+                let speed = horizontal.length();
+                if speed > 1e-6 && speed.is_finite() {
+                    let axis = Vec3::new(-horizontal.y, 0.0, horizontal.x) / speed;
+                    Quat::from_axis_angle(axis, 0.5 * speed.atan2(descent.max(1e-6)))
+                } else {
+                    Quat::IDENTITY
+                }
+            }
+        }
+    }
+
+    /// Plate angle at the end (tumbling swings carry it on).
+    pub fn end_angle(&self, db: &TrajectoryDatabase) -> f32 {
+        match *self {
+            Self::Swing {
+                segment,
+                sign,
+                tumble: true,
+                theta0,
+                ..
+            } => theta0 + sign * db.segment(segment).tumble[SEGMENT_SAMPLES - 1],
+            Self::Swing { segment, sign, .. } => {
+                sign * db.segment(segment).flutter[SEGMENT_SAMPLES - 1]
+            }
+            Self::Curve { .. } => 0.0,
+        }
+    }
+}
+
+/// Shortest piece, s: keeps the piece loop finite for any input.
+pub const MIN_PIECE: f32 = 1e-4;
+
+/// Linear interpolation of the segment at fraction `s`; past 1 the straight continuation.
+fn sample_points(points: &[Vec2; SEGMENT_SAMPLES], s: f32) -> (Vec2, Vec2) {
+    let last = SEGMENT_SAMPLES - 1;
+    let x = s.max(0.0) * last as f32;
+    if x >= last as f32 {
+        let end_velocity = (points[last] - points[last - 1]) * last as f32;
+        return (points[last], end_velocity * (s - 1.0));
+    }
+    let i = x as usize;
+    let f = x - i as f32;
+    (points[i].lerp(points[i + 1], f), Vec2::ZERO)
+}
+
+fn sample_angles(angles: &[f32; SEGMENT_SAMPLES], s: f32) -> f32 {
+    let x = s * (SEGMENT_SAMPLES - 1) as f32;
+    let i = (x as usize).min(SEGMENT_SAMPLES - 2);
+    let f = x - i as f32;
+    angles[i] + (angles[i + 1] - angles[i]) * f
+}

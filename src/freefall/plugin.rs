@@ -1,0 +1,275 @@
+//! ECS glue: [`FallingObject`], its runtime [`FallState`], the [`Landed`] message and the
+//! [`FreeFallPlugin`].
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use bevy::app::{App, FixedUpdate, Plugin, PostUpdate};
+use bevy::ecs::prelude::*;
+use bevy::math::{Quat, Vec3};
+use bevy::reflect::Reflect;
+use bevy::time::{Fixed, Time};
+use bevy::transform::TransformSystems;
+use bevy::transform::components::Transform;
+
+use super::database::TrajectoryDatabase;
+use super::markov::MarkovChain;
+use super::motion::FallScales;
+use super::path::{FallPath, StepOutcome, WindTilt};
+use super::regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape, regime};
+use crate::WindfallSystems;
+use crate::wind::WindField;
+
+/// A leaf, a sheet of paper, a coin: anything thin that falls through air or water.
+///
+/// It falls from where its [`Transform`] is when the component is added (released in the
+/// frame's `PostUpdate`, moved from the next fixed step on). Change it (for example `seed += 1`)
+/// to release it again from its current transform. An invalid description leaves a
+/// [`FallState`] with [`FallState::error`] set and the entity still.
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[require(Transform, FallState)]
+pub struct FallingObject {
+    /// Outline and sizes.
+    pub shape: Shape,
+    /// ρ_s, kg/m³ (above the fluid's).
+    pub density: f32,
+    /// The fluid it falls in.
+    pub fluid: Fluid,
+    /// g, m/s².
+    pub gravity: f32,
+    /// Seed of this object's random stream (Markov steps, search-tree choices, heading).
+    pub seed: u64,
+    /// Use this main motion instead of the phase diagram's.
+    pub main_motion: Option<PrimitiveMotion>,
+    /// k of eq. 7, the deviation coefficient (1 = the paper's amplitudes).
+    pub deviation: f32,
+    /// W of eq. 15: the largest tilt the wind gives, rad.
+    pub wind_tilt: f32,
+}
+
+impl Default for FallingObject {
+    /// A 7.3 × 4.2 cm leaf, 0.3 mm thick, density 500 kg/m³, in air.
+    fn default() -> Self {
+        Self {
+            shape: Shape::Ellipse {
+                major: 0.073,
+                minor: 0.042,
+                thickness: 3.0e-4,
+            },
+            density: 500.0,
+            fluid: Fluid::AIR,
+            gravity: 9.81,
+            seed: 0,
+            main_motion: None,
+            deviation: 1.0,
+            wind_tilt: 0.6,
+        }
+    }
+}
+
+impl FallingObject {
+    /// Re, I*, U and the main motion (the phase diagram's, or [`FallingObject::main_motion`]).
+    pub fn regime(&self) -> Result<Regime, FreeFallError> {
+        if !(self.deviation.is_finite() && (0.0..=100.0).contains(&self.deviation)) {
+            return Err(FreeFallError::Invalid {
+                field: "deviation",
+                value: self.deviation,
+                reason: "must be in [0, 100]",
+            });
+        }
+        if !(self.wind_tilt.is_finite() && self.wind_tilt.abs() <= std::f32::consts::PI) {
+            return Err(FreeFallError::Invalid {
+                field: "wind_tilt",
+                value: self.wind_tilt,
+                reason: "must be an angle in [−π, π]",
+            });
+        }
+        let mut r = regime(&self.shape, self.density, &self.fluid, self.gravity)?;
+        if let Some(main) = self.main_motion {
+            r.main = main;
+        }
+        Ok(r)
+    }
+
+    /// The sizes of its fall (U, Ω = U / a, L, k).
+    pub fn scales(&self, regime: &Regime) -> FallScales {
+        let (length, chord, _) = self.shape.lengths();
+        FallScales {
+            descent_speed: regime.descent_speed,
+            swing_rate: (regime.descent_speed / chord).max(1e-6),
+            length,
+            deviation: self.deviation,
+        }
+    }
+}
+
+/// Runtime state of a [`FallingObject`] (required component).
+#[derive(Component, Clone, Debug, Default)]
+pub struct FallState {
+    regime: Option<Regime>,
+    path: Option<FallPath>,
+    error: Option<FreeFallError>,
+}
+
+impl FallState {
+    /// Re, I*, U, mass and main motion, once the object is set up.
+    pub fn regime(&self) -> Option<&Regime> {
+        self.regime.as_ref()
+    }
+
+    /// The fall (Markov state, control points, orientation).
+    pub fn path(&self) -> Option<&FallPath> {
+        self.path.as_ref()
+    }
+
+    /// Why the object does not fall, if it is invalid.
+    pub fn error(&self) -> Option<&FreeFallError> {
+        self.error.as_ref()
+    }
+
+    /// The current primitive motion.
+    pub fn motion(&self) -> Option<PrimitiveMotion> {
+        self.path.as_ref().map(FallPath::motion)
+    }
+
+    /// True once on the ground.
+    pub fn landed(&self) -> bool {
+        self.path.as_ref().is_some_and(FallPath::landed)
+    }
+}
+
+/// Sent when a [`FallingObject`] reaches the ground.
+#[derive(Message, Clone, Copy, Debug, PartialEq)]
+pub struct Landed {
+    /// The object.
+    pub entity: Entity,
+    /// Where it came to rest.
+    pub position: Vec3,
+    /// Seconds since it was released.
+    pub flight_time: f32,
+}
+
+/// Shared settings of every fall.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct FreeFallSettings {
+    /// Height of the ground, m: objects stop there.
+    pub ground_height: f32,
+    /// The Markov chain of motions (validated when built with [`MarkovChain::new`]).
+    pub chain: MarkovChain,
+}
+
+impl Default for FreeFallSettings {
+    fn default() -> Self {
+        Self {
+            ground_height: 0.0,
+            chain: MarkovChain::default(),
+        }
+    }
+}
+
+/// The trajectory database, built once when the plugin is added.
+#[derive(Resource, Clone, Debug)]
+pub struct FallDatabase {
+    /// The database.
+    pub database: Arc<TrajectoryDatabase>,
+    /// How long building it took, s.
+    pub build_seconds: f32,
+}
+
+/// Moves every [`FallingObject`] on the fixed timestep and poses it once per frame.
+#[derive(Default)]
+pub struct FreeFallPlugin;
+
+impl Plugin for FreeFallPlugin {
+    fn build(&self, app: &mut App) {
+        crate::configure_sets(app);
+        let start = Instant::now();
+        let database = Arc::new(TrajectoryDatabase::default());
+        let build_seconds = start.elapsed().as_secs_f32();
+        app.init_resource::<FreeFallSettings>()
+            .insert_resource(FallDatabase {
+                database,
+                build_seconds,
+            })
+            .add_message::<Landed>()
+            .add_systems(FixedUpdate, step_objects.in_set(WindfallSystems::Simulate))
+            // Releasing here (not in FixedUpdate) reads the transform the user set this frame
+            // before `pose_objects` would overwrite it.
+            .add_systems(
+                PostUpdate,
+                (release_objects, pose_objects)
+                    .chain()
+                    .before(TransformSystems::Propagate),
+            );
+    }
+}
+
+fn release_objects(
+    mut objects: Query<(&FallingObject, &Transform, &mut FallState), Changed<FallingObject>>,
+    settings: Res<FreeFallSettings>,
+    db: Res<FallDatabase>,
+) {
+    for (object, transform, mut state) in &mut objects {
+        *state = match object.regime() {
+            Ok(regime) => FallState {
+                regime: Some(regime),
+                path: Some(FallPath::new(
+                    &db.database,
+                    object.scales(&regime),
+                    settings.chain.bounded(regime.main),
+                    object.seed,
+                    transform.translation,
+                    settings.ground_height,
+                )),
+                error: None,
+            },
+            Err(error) => FallState {
+                regime: None,
+                path: None,
+                error: Some(error),
+            },
+        };
+    }
+}
+
+fn step_objects(
+    mut objects: Query<(Entity, &FallingObject, &mut FallState)>,
+    wind: Option<Res<WindField>>,
+    db: Res<FallDatabase>,
+    time: Res<Time<Fixed>>,
+    mut landed: MessageWriter<Landed>,
+) {
+    let dt = time.delta_secs();
+    let reference_speed = wind.as_ref().map_or(1.0, |w| w.config().reference_speed);
+    for (entity, object, mut state) in &mut objects {
+        let Some(path) = state.path.as_mut() else {
+            continue;
+        };
+        let velocity = match &wind {
+            Some(w) if !path.landed() => w.velocity(path.position()),
+            _ => Vec3::ZERO,
+        };
+        let tilt = WindTilt {
+            max_angle: object.wind_tilt,
+            reference_speed,
+        };
+        if path.advance(&db.database, dt, velocity, &tilt) == StepOutcome::Landed {
+            landed.write(Landed {
+                entity,
+                position: path.position(),
+                flight_time: path.time(),
+            });
+        }
+    }
+}
+
+fn pose_objects(mut objects: Query<(&FallState, &mut Transform)>, time: Option<Res<Time<Fixed>>>) {
+    let s = time.map_or(1.0, |t| t.overstep_fraction());
+    for (state, mut transform) in &mut objects {
+        if let Some(path) = state.path() {
+            let (position, rotation): (Vec3, Quat) = path.smoothed(s);
+            transform.translation = position;
+            transform.rotation = rotation;
+        }
+    }
+}

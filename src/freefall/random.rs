@@ -1,0 +1,38 @@
+//! A small portable random stream per falling object.
+
+use rand::{RngCore, SeedableRng};
+use rand_pcg::Pcg32;
+
+/// PCG32 with uniform and normal draws made from integer bits and `libm`, so a seed gives the
+/// same numbers on every platform.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FallRng(Pcg32);
+
+impl FallRng {
+    /// A stream from a seed.
+    pub fn new(seed: u64) -> Self {
+        Self(Pcg32::seed_from_u64(seed))
+    }
+
+    /// Uniform in [0, 1) with 24 bits.
+    pub fn uniform(&mut self) -> f32 {
+        (self.0.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
+    }
+
+    /// Standard normal by Marsaglia's polar method (the Box–Muller family the paper names).
+    pub fn normal(&mut self) -> f32 {
+        loop {
+            let x = 2.0 * self.uniform() - 1.0;
+            let y = 2.0 * self.uniform() - 1.0;
+            let s = x * x + y * y;
+            if s > 0.0 && s < 1.0 {
+                return x * libm::sqrtf(-2.0 * libm::logf(s) / s);
+            }
+        }
+    }
+
+    /// True with probability one half.
+    pub fn coin(&mut self) -> bool {
+        self.0.next_u32() & 1 == 1
+    }
+}

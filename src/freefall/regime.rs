@@ -1,0 +1,403 @@
+//! From a physical object to its main primitive motion: Re (eq. 1, 3), I* (eq. 2) and the
+//! (Re, I*) phase diagram of §2.1.
+
+use bevy::reflect::Reflect;
+use thiserror::Error;
+
+/// The six primitive motions L1..L6 of §2.1, in the order of the paper's hypothesis (§3.1): a
+/// fall only ever moves to the same or a higher-numbered motion.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Default, Reflect)]
+pub enum PrimitiveMotion {
+    /// L1, SD: drops straight down.
+    #[default]
+    SteadyDescent,
+    /// L2, PF: oscillates from side to side with a well-defined period.
+    Fluttering,
+    /// L3, TC: oscillates with growing amplitude and turns into tumbling, irregularly.
+    Chaotic,
+    /// L4, PT: turns end over end and drifts to one side.
+    Tumbling,
+    /// L5, TH: a helical path, a rose curve seen from above.
+    Helix,
+    /// L6, PS: falls down a circle.
+    Spiral,
+}
+
+impl PrimitiveMotion {
+    /// All six, L1 to L6.
+    pub const ALL: [Self; 6] = [
+        Self::SteadyDescent,
+        Self::Fluttering,
+        Self::Chaotic,
+        Self::Tumbling,
+        Self::Helix,
+        Self::Spiral,
+    ];
+
+    /// 0-based index: L1 → 0, ..., L6 → 5.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The motion with this 0-based index (clamped to L6).
+    pub fn from_index(index: usize) -> Self {
+        Self::ALL[index.min(5)]
+    }
+
+    /// The paper's label, `"L1"`..`"L6"`.
+    pub fn label(self) -> &'static str {
+        ["L1", "L2", "L3", "L4", "L5", "L6"][self.index()]
+    }
+
+    /// Planar motions (fluttering, chaotic, tumbling) are built from database segments by the
+    /// search tree; the others from the unified function of eq. 6.
+    pub fn is_planar(self) -> bool {
+        matches!(self, Self::Fluttering | Self::Chaotic | Self::Tumbling)
+    }
+}
+
+/// One region of the phase diagram: `motion` where `re_min ≤ Re < re_max` and
+/// `inertia_min ≤ I* < inertia_max`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhaseRegion {
+    /// The motion of this region.
+    pub motion: PrimitiveMotion,
+    /// Lowest Reynolds number (inclusive).
+    pub re_min: f32,
+    /// Highest Reynolds number (exclusive).
+    pub re_max: f32,
+    /// Lowest I* (inclusive).
+    pub inertia_min: f32,
+    /// Highest I* (exclusive).
+    pub inertia_max: f32,
+    /// Where the boundary comes from.
+    pub source: &'static str,
+}
+
+/// The phase diagram (the paper's Fig. 3 is not in its text), first match wins; a point that
+/// matches no region is [`PrimitiveMotion::Fluttering`], the periodic regime of Field et al.
+///
+/// The boundaries are rounded values of the regions the literature reports, placed so that the
+/// paper's three objects of §5 (Fig. 15) fall where the paper says: coin (3.55e3, 1e-2)
+/// fluttering, paper ellipse (6.8e3, 2.2e-3) spiral, leaf (1.2e4, 6.3e-3) helix.
+pub const PHASE_DIAGRAM: [PhaseRegion; 5] = [
+    PhaseRegion {
+        motion: PrimitiveMotion::SteadyDescent,
+        re_min: 0.0,
+        re_max: 100.0,
+        inertia_min: 0.0,
+        inertia_max: f32::INFINITY,
+        source: "Field et al. 1997, Willmarth et al. 1964: steady fall below Re ≈ 100 at any I*",
+    },
+    PhaseRegion {
+        motion: PrimitiveMotion::Tumbling,
+        re_min: 100.0,
+        re_max: f32::INFINITY,
+        inertia_min: 4.0e-2,
+        inertia_max: f32::INFINITY,
+        source: "Field et al. 1997: tumbling above I* ≈ 4e-2",
+    },
+    PhaseRegion {
+        motion: PrimitiveMotion::Chaotic,
+        re_min: 100.0,
+        re_max: f32::INFINITY,
+        inertia_min: 1.5e-2,
+        inertia_max: 4.0e-2,
+        source: "Field et al. 1997: chaotic band between periodic and tumbling",
+    },
+    PhaseRegion {
+        motion: PrimitiveMotion::Spiral,
+        re_min: 3.0e3,
+        re_max: f32::INFINITY,
+        inertia_min: 0.0,
+        inertia_max: 4.0e-3,
+        source: "Zhong et al. 2011: spiral for the lightest thin disks at high Re",
+    },
+    PhaseRegion {
+        motion: PrimitiveMotion::Helix,
+        re_min: 3.0e3,
+        re_max: f32::INFINITY,
+        inertia_min: 4.0e-3,
+        inertia_max: 8.0e-3,
+        source: "Zhong et al. 2011: transitional helix between zigzag and spiral",
+    },
+];
+
+/// The main primitive motion of an object with Reynolds number `reynolds` and dimensionless
+/// moment of inertia `inertia`, from [`PHASE_DIAGRAM`]. NaN or negative values count as 0.
+pub fn classify(reynolds: f32, inertia: f32) -> PrimitiveMotion {
+    let re = if reynolds > 0.0 { reynolds } else { 0.0 };
+    let i = if inertia > 0.0 { inertia } else { 0.0 };
+    PHASE_DIAGRAM
+        .iter()
+        .find(|r| re >= r.re_min && re < r.re_max && i >= r.inertia_min && i < r.inertia_max)
+        .map_or(PrimitiveMotion::Fluttering, |r| r.motion)
+}
+
+/// A fluid: density and kinematic viscosity.
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+pub struct Fluid {
+    /// ρ_f, kg/m³.
+    pub density: f32,
+    /// ν, m²/s.
+    pub kinematic_viscosity: f32,
+}
+
+impl Fluid {
+    /// Air at about 20 °C, sea level.
+    pub const AIR: Self = Self {
+        density: 1.204,
+        kinematic_viscosity: 1.5e-5,
+    };
+    /// Water at 25 °C (the viscosity that gives the paper's coin Re = 3.55e3).
+    pub const WATER: Self = Self {
+        density: 997.0,
+        kinematic_viscosity: 0.89e-6,
+    };
+}
+
+/// The object's outline. Thin plates: thickness below the other sizes.
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+pub enum Shape {
+    /// A coin: L = a = diameter, b = thickness.
+    Disk {
+        /// m.
+        diameter: f32,
+        /// m.
+        thickness: f32,
+    },
+    /// A card: L = length, a = width (the chord it tumbles over), b = thickness.
+    Rectangle {
+        /// m, ≥ width.
+        length: f32,
+        /// m.
+        width: f32,
+        /// m.
+        thickness: f32,
+    },
+    /// A leaf or paper ellipse: L = major axis, a = minor axis, b = thickness.
+    Ellipse {
+        /// m, ≥ minor.
+        major: f32,
+        /// m.
+        minor: f32,
+        /// m.
+        thickness: f32,
+    },
+}
+
+impl Shape {
+    /// (L, a, b) of §2.1: length, cross-section length, cross-section width (thickness).
+    pub fn lengths(&self) -> (f32, f32, f32) {
+        match *self {
+            Self::Disk {
+                diameter,
+                thickness,
+            } => (diameter, diameter, thickness),
+            Self::Rectangle {
+                length,
+                width,
+                thickness,
+            } => (length, width, thickness),
+            Self::Ellipse {
+                major,
+                minor,
+                thickness,
+            } => (major, minor, thickness),
+        }
+    }
+
+    /// Face area, m².
+    pub fn area(&self) -> f32 {
+        let (l, a, _) = self.lengths();
+        match self {
+            Self::Rectangle { .. } => l * a,
+            _ => std::f32::consts::FRAC_PI_4 * l * a,
+        }
+    }
+}
+
+/// Why an object cannot fall by the paper's model.
+#[derive(Clone, Copy, Debug, PartialEq, Error)]
+pub enum FreeFallError {
+    /// A number outside its valid range.
+    #[error("`{field}` = {value}: {reason}")]
+    Invalid {
+        /// The field's name.
+        field: &'static str,
+        /// The rejected value.
+        value: f32,
+        /// What it must be.
+        reason: &'static str,
+    },
+    /// ρ_s ≤ ρ_f: eq. 3 gives no descent velocity (the object floats or hovers).
+    #[error(
+        "`density` = {density} kg/m³ is not above the fluid's {fluid_density} kg/m³: it does not fall"
+    )]
+    LighterThanFluid {
+        /// The object's density.
+        density: f32,
+        /// The fluid's density.
+        fluid_density: f32,
+    },
+}
+
+impl FreeFallError {
+    /// Name of the offending field (`"shape.thickness"`, `"density"`, ...).
+    pub fn field(&self) -> &'static str {
+        match self {
+            Self::Invalid { field, .. } => field,
+            Self::LighterThanFluid { .. } => "density",
+        }
+    }
+}
+
+/// Largest accepted size, m: far beyond any use, small enough that every derived number stays
+/// finite in f32.
+pub const MAX_SIZE: f32 = 1.0e3;
+/// Smallest accepted size, m (0.1 µm).
+pub const MIN_SIZE: f32 = 1.0e-7;
+/// Largest accepted ρ_s / ρ_f.
+pub const MAX_DENSITY_RATIO: f32 = 1.0e6;
+
+/// Everything §2.1 derives from the inputs. Computed in f64, stored in f32.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Regime {
+    /// Re = U L / ν (eq. 1).
+    pub reynolds: f32,
+    /// I* (eq. 2).
+    pub inertia: f32,
+    /// U, the mean descent speed of eq. 3, m/s.
+    pub descent_speed: f32,
+    /// Mass, kg.
+    pub mass: f32,
+    /// The phase diagram's motion for (Re, I*).
+    pub main: PrimitiveMotion,
+}
+
+/// Re, I*, U and the main motion of `shape` with density `density` (kg/m³) in `fluid` under
+/// gravity `gravity` (m/s²).
+///
+/// I* is eq. 2 for rotation about the long axis (the axis a falling plate turns about),
+/// normalised by ρ_f a⁵, in the thin-plate limit b ≪ a the paper uses:
+/// - disk (paper): I* = π ρ_s b / (64 ρ_f a);
+/// - rectangle (paper): I* = 8 ρ_s (a² + b²) b / (3π ρ_f a³);
+/// - ellipse (derived): ∫ρ (y² + z²) dV over an elliptic plate of axes L, a is
+///   ρ_s π L a b · a²/64, so I* = π ρ_s b L / (64 ρ_f a²), which is the disk's at L = a.
+///
+/// U = √((ρ_s/ρ_f − 1) g b) (eq. 3) and Re = U L / ν (eq. 1).
+pub fn regime(
+    shape: &Shape,
+    density: f32,
+    fluid: &Fluid,
+    gravity: f32,
+) -> Result<Regime, FreeFallError> {
+    let (l, a, b) = shape.lengths();
+    let (names, what) = match shape {
+        Shape::Disk { .. } => (
+            ["shape.diameter", "shape.diameter", "shape.thickness"],
+            "disk",
+        ),
+        Shape::Rectangle { .. } => (["shape.length", "shape.width", "shape.thickness"], "rect"),
+        Shape::Ellipse { .. } => (["shape.major", "shape.minor", "shape.thickness"], "ellipse"),
+    };
+    for (name, value) in names.iter().zip([l, a, b]) {
+        positive(name, value, MAX_SIZE)?;
+        if value < MIN_SIZE {
+            return Err(invalid(name, value, "must be ≥ 1e-7 m"));
+        }
+    }
+    if b > a {
+        return Err(invalid(
+            names[2],
+            b,
+            "a thin plate: thickness ≤ the other sizes",
+        ));
+    }
+    if a > l {
+        return Err(invalid(
+            names[1],
+            a,
+            "the cross-section may not exceed the length",
+        ));
+    }
+    positive("fluid.density", fluid.density, 1.0e5)?;
+    positive(
+        "fluid.kinematic_viscosity",
+        fluid.kinematic_viscosity,
+        1.0e3,
+    )?;
+    positive("gravity", gravity, 1.0e4)?;
+    positive("density", density, 1.0e7)?;
+    let ratio = f64::from(density) / f64::from(fluid.density);
+    if ratio <= 1.0 {
+        return Err(FreeFallError::LighterThanFluid {
+            density,
+            fluid_density: fluid.density,
+        });
+    }
+    if ratio > f64::from(MAX_DENSITY_RATIO) {
+        return Err(invalid("density", density, "ρ_s/ρ_f must be ≤ 1e6"));
+    }
+    let (l, a, b) = (f64::from(l), f64::from(a), f64::from(b));
+    let pi = std::f64::consts::PI;
+    let inertia = match what {
+        "disk" => pi * ratio * b / (64.0 * a),
+        "rect" => 8.0 * ratio * (a * a + b * b) * b / (3.0 * pi * a.powi(3)),
+        _ => pi * ratio * b * l / (64.0 * a * a),
+    };
+    let descent_speed = ((ratio - 1.0) * f64::from(gravity) * b).sqrt();
+    let reynolds = descent_speed * l / f64::from(fluid.kinematic_viscosity);
+    let mass = f64::from(density) * f64::from(shape.area()) * b;
+    let (reynolds, inertia) = (reynolds as f32, inertia as f32);
+    Ok(Regime {
+        reynolds,
+        inertia,
+        descent_speed: descent_speed as f32,
+        mass: mass as f32,
+        main: classify(reynolds, inertia),
+    })
+}
+
+fn invalid(field: &'static str, value: f32, reason: &'static str) -> FreeFallError {
+    FreeFallError::Invalid {
+        field,
+        value,
+        reason,
+    }
+}
+
+fn positive(field: &'static str, value: f32, max: f32) -> Result<(), FreeFallError> {
+    if value.is_finite() && value > 0.0 && value <= max {
+        Ok(())
+    } else {
+        Err(invalid(
+            field,
+            value,
+            "must be finite, > 0 and within the documented maximum",
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_region_is_reachable_and_first_match_wins() {
+        for region in PHASE_DIAGRAM {
+            let re = if region.re_max.is_finite() {
+                (region.re_min + region.re_max) / 2.0
+            } else {
+                region.re_min * 2.0 + 1.0
+            };
+            let i = if region.inertia_max.is_finite() {
+                (region.inertia_min + region.inertia_max) / 2.0
+            } else {
+                region.inertia_min * 2.0
+            };
+            assert_eq!(classify(re, i), region.motion, "{region:?}");
+        }
+        assert_eq!(classify(500.0, 1e-3), PrimitiveMotion::Fluttering);
+    }
+}
