@@ -317,26 +317,37 @@ fn bounded_chain_stays_at_or_below_the_main_motion() {
     assert_eq!(motion_class_count(PrimitiveMotion::Chaotic), 7);
 }
 
-fn still_fall(object: &FallingObject, seed: u64, seconds: f32, dt: f32) -> FallPath {
-    let db = TrajectoryDatabase::default();
+/// A fall in still fluid and the motion after every step.
+fn still_fall_motions(
+    object: &FallingObject,
+    seed: u64,
+    seconds: f32,
+    dt: f32,
+) -> (FallPath, Vec<PrimitiveMotion>) {
+    let model = FallModel::default();
     let regime = object.regime().unwrap();
     let mut path = FallPath::new(
-        &db,
+        &model,
         object.scales(&regime),
-        MarkovChain::default().bounded(regime.main),
+        regime.main,
         seed,
         Vec3::new(0.0, 1.0e6, 0.0),
         f32::NEG_INFINITY,
     );
-    path.record_transitions(true);
     let tilt = WindTilt {
         max_angle: 0.5,
         reference_speed: 4.0,
     };
+    let mut motions = vec![path.motion()];
     for _ in 0..(seconds / dt).round() as usize {
-        path.advance(&db, dt, Vec3::ZERO, &tilt);
+        path.advance(&model, dt, Vec3::ZERO, &tilt);
+        motions.push(path.motion());
     }
-    path
+    (path, motions)
+}
+
+fn still_fall(object: &FallingObject, seed: u64, seconds: f32, dt: f32) -> FallPath {
+    still_fall_motions(object, seed, seconds, dt).0
 }
 
 #[test]
@@ -382,17 +393,17 @@ fn motions_have_their_shapes() {
         main_motion: Some(PrimitiveMotion::Fluttering),
         ..coin()
     };
-    let db = TrajectoryDatabase::default();
     let regime = flutter_object.regime().unwrap();
     let chain = MarkovChain::new(
         [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
         *MarkovChain::default().transitions(),
     )
     .unwrap();
+    let model = FallModel::new(TrajectoryDatabase::default(), chain);
     let mut path = FallPath::new(
-        &db,
+        &model,
         flutter_object.scales(&regime),
-        chain.bounded(PrimitiveMotion::Fluttering),
+        PrimitiveMotion::Fluttering,
         2,
         Vec3::ZERO,
         f32::NEG_INFINITY,
@@ -403,7 +414,7 @@ fn motions_have_their_shapes() {
     };
     let mut xs = Vec::new();
     for _ in 0..600 {
-        path.advance(&db, 1.0 / 60.0, Vec3::ZERO, &tilt);
+        path.advance(&model, 1.0 / 60.0, Vec3::ZERO, &tilt);
         xs.push(horizontal(&path));
     }
     let spread = xs.iter().map(|x| x.length()).fold(0.0f32, f32::max);
@@ -445,10 +456,16 @@ fn long_falls_only_move_up_the_chain_and_end_in_the_main_motion() {
             seed,
             ..coin()
         };
-        let path = still_fall(&object, seed, 60.0, 1.0 / 30.0);
-        assert!(path.transitions().len() > 50);
-        for (from, to) in path.transitions() {
-            assert!(to >= from, "seed {seed}: {from:?} → {to:?}");
+        // Steps shorter than the shortest swing (0.04 s at r = 1/10): every change is seen.
+        let (path, motions) = still_fall_motions(&object, seed, 60.0, 1.0 / 30.0);
+        assert!(path.markov_steps() > 50);
+        for pair in motions.windows(2) {
+            assert!(
+                pair[1] >= pair[0],
+                "seed {seed}: {:?} → {:?}",
+                pair[0],
+                pair[1]
+            );
         }
         assert_eq!(path.motion(), PrimitiveMotion::Spiral);
     }
@@ -569,7 +586,6 @@ fn fall_app(
     app.add_plugins(FreeFallPlugin)
         .insert_resource(FreeFallSettings {
             ground_height: ground,
-            ..default()
         });
     let entities = objects
         .iter()
@@ -774,11 +790,11 @@ proptest! {
             }
         };
         prop_assert!(regime.reynolds.is_finite() && regime.inertia.is_finite());
-        let db = TrajectoryDatabase::default();
-        let mut path = FallPath::new(&db, object.scales(&regime), MarkovChain::default().bounded(regime.main), seed, Vec3::new(0.0, 10.0, 0.0), 0.0);
+        let model = FallModel::default();
+        let mut path = FallPath::new(&model, object.scales(&regime), regime.main, seed, Vec3::new(0.0, 10.0, 0.0), 0.0);
         let tilt = WindTilt { max_angle: 0.6, reference_speed: 4.0 };
         for _ in 0..200 {
-            path.advance(&db, dt, Vec3::from_array(wind), &tilt);
+            path.advance(&model, dt, Vec3::from_array(wind), &tilt);
             let (p, q) = path.smoothed(0.5);
             prop_assert!(p.is_finite() && q.is_finite(), "{p:?} {q:?}");
             prop_assert!((q.length() - 1.0).abs() < 1e-3);

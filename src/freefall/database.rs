@@ -29,6 +29,11 @@ pub struct Segment {
     pub flutter: [f32; SEGMENT_SAMPLES],
     /// Tumbling: angle turned since the start of the swing, 0 → π, from eq. 4.
     pub tumble: [f32; SEGMENT_SAMPLES],
+    /// (cos θ/2, sin θ/2) of `flutter`: the rotation as a unit complex number, so a pose is a
+    /// normalised lerp, not a sine and cosine per frame.
+    pub flutter_half: [Vec2; SEGMENT_SAMPLES],
+    /// (cos θ/2, sin θ/2) of `tumble`.
+    pub tumble_half: [Vec2; SEGMENT_SAMPLES],
 }
 
 impl Segment {
@@ -75,6 +80,7 @@ pub struct TrajectoryDatabase {
 }
 
 impl Default for TrajectoryDatabase {
+    /// [`TrajectoryDatabase::build`] with the default configuration.
     fn default() -> Self {
         Self::build(&DatabaseConfig::default())
     }
@@ -193,7 +199,12 @@ impl TrajectoryDatabase {
 
     /// A segment of the cluster nearest to `feature`, picked at random.
     pub fn find(&self, feature: Vec2, rng: &mut FallRng) -> u32 {
-        let members = &self.members[self.nearest_cluster(feature)];
+        self.pick(self.nearest_cluster(feature), rng)
+    }
+
+    /// A random member of cluster `cluster` (clamped to the last cluster).
+    pub fn pick(&self, cluster: usize, rng: &mut FallRng) -> u32 {
+        let members = &self.members[cluster.min(self.members.len() - 1)];
         let pick = ((rng.uniform() * members.len() as f32) as usize).min(members.len() - 1);
         members[pick]
     }
@@ -219,10 +230,18 @@ fn harmonic_segment(
         let s = i as f32 / (SEGMENT_SAMPLES - 1) as f32;
         at(std::f32::consts::FRAC_PI_2 + std::f32::consts::PI * s) - start
     });
+    let half = |angles: &[f32; SEGMENT_SAMPLES]| {
+        angles.map(|a| {
+            let (s, c) = (0.5 * a).sin_cos();
+            Vec2::new(c, s)
+        })
+    };
     Segment {
         alpha,
         gamma,
         points,
+        flutter_half: half(&flutter),
+        tumble_half: half(&tumble),
         flutter,
         tumble,
     }

@@ -25,6 +25,7 @@
 
 mod database;
 mod markov;
+mod model;
 mod motion;
 pub mod ode;
 mod path;
@@ -34,12 +35,13 @@ mod regime;
 
 pub use database::{DatabaseConfig, SEGMENT_SAMPLES, Segment, TrajectoryDatabase, kmeans};
 pub use markov::{BoundedChain, MarkovChain, MarkovError, motion_class_count};
+pub use model::FallModel;
 pub use motion::{
     CHAOTIC_SCALE, FallScales, Glide, MIN_PIECE, MOTION_SHAPES, MotionShape, Piece, next_glide,
 };
 pub use path::{FallPath, StepOutcome, WindTilt};
 pub use plugin::{
-    FallDatabase, FallState, FallingObject, FreeFallPlugin, FreeFallSettings, Landed,
+    FallModelBuildTime, FallState, FallingObject, FreeFallPlugin, FreeFallSettings, Landed,
 };
 pub use random::FallRng;
 pub use regime::{

@@ -91,6 +91,13 @@ impl FallScales {
         self.deviation * MOTION_SHAPES[motion.index()].deviation * self.length
     }
 
+    /// The feature vector a swing of `motion` should have, in database units (length U/Ω):
+    /// (2 A₀ Ω / U, −π), the search key of §2.3.1.
+    pub fn swing_feature(&self, motion: PrimitiveMotion) -> Vec2 {
+        let unit = self.descent_speed / self.swing_rate;
+        Vec2::new(2.0 * self.amplitude(motion) / unit.max(1e-12), -PI)
+    }
+
     /// Time of one swing (and one Markov step), s.
     pub fn swing_time(&self) -> f32 {
         PI / self.swing_rate
@@ -161,6 +168,8 @@ pub enum Piece {
         tumble: bool,
         /// Plate angle at the start of a tumbling swing, rad.
         theta0: f32,
+        /// (cos θ₀/2, sin θ₀/2).
+        start_half: Vec2,
     },
     /// Eq. 6 from curve time `start`.
     Curve {
@@ -182,9 +191,13 @@ pub enum Piece {
 }
 
 impl Piece {
-    /// A swing for `motion` (fluttering, chaotic or tumbling) found in `db` by its feature vector.
+    /// A swing for `motion` (fluttering, chaotic or tumbling): a random member of database
+    /// cluster `cluster` (the one nearest [`FallScales::swing_feature`], found once per motion
+    /// by the caller), scaled so its feature vector is r × the wanted one.
+    #[allow(clippy::too_many_arguments)]
     pub fn swing(
         db: &TrajectoryDatabase,
+        cluster: usize,
         scales: &FallScales,
         motion: PrimitiveMotion,
         glide: Glide,
@@ -192,11 +205,11 @@ impl Piece {
         theta0: f32,
         rng: &mut FallRng,
     ) -> Self {
-        // In database units (length U/Ω): V = r (2 A₀ Ω / U, −π).
         let unit = scales.descent_speed / scales.swing_rate;
-        let sideways = 2.0 * scales.amplitude(motion) / unit.max(1e-12);
-        let segment = db.find(Vec2::new(sideways, -PI), rng);
+        let sideways = scales.swing_feature(motion).x;
+        let segment = db.pick(cluster, rng);
         let seg_x = db.segment(segment).feature().x.max(1e-6);
+        let (sin, cos) = (0.5 * theta0).sin_cos();
         Self::Swing {
             segment,
             sign: glide.sign(),
@@ -204,6 +217,7 @@ impl Piece {
             duration: (r * scales.swing_time()).max(MIN_PIECE),
             tumble: motion == PrimitiveMotion::Tumbling,
             theta0,
+            start_half: Vec2::new(cos, sin),
         }
     }
 
@@ -226,6 +240,42 @@ impl Piece {
         match *self {
             Self::Swing { duration, .. } | Self::Curve { duration, .. } => duration,
         }
+    }
+
+    /// [`Piece::offset`] and [`Piece::tilt`] at once (one database lookup for swings).
+    pub fn sample(&self, db: &TrajectoryDatabase, t: f32) -> (Vec3, Quat) {
+        let Self::Swing {
+            segment,
+            sign,
+            scale,
+            duration,
+            tumble,
+            start_half,
+            ..
+        } = *self
+        else {
+            return (self.offset(db, t), self.tilt(db, t));
+        };
+        let seg = db.segment(segment);
+        let last = SEGMENT_SAMPLES - 1;
+        let s = t / duration;
+        let x = s.clamp(0.0, 1.0) * last as f32;
+        let i = (x as usize).min(last - 1);
+        let f = x - i as f32;
+        let mut p = seg.points[i].lerp(seg.points[i + 1], f);
+        if s > 1.0 {
+            p += (seg.points[last] - seg.points[last - 1]) * (last as f32 * (s - 1.0));
+        }
+        let half = if tumble {
+            &seg.tumble_half
+        } else {
+            &seg.flutter_half
+        };
+        let local = half[i].lerp(half[i + 1], f);
+        (
+            Vec3::new(sign * p.x * scale.x, p.y * scale.y, 0.0),
+            swing_rotation(local, sign, tumble, start_half),
+        )
     }
 
     /// Displacement since the start at piece time `t` (beyond the end a swing continues in a
@@ -277,17 +327,17 @@ impl Piece {
                 sign,
                 duration,
                 tumble,
-                theta0,
+                start_half,
                 ..
             } => {
                 let seg = db.segment(segment);
-                let s = (t / duration).clamp(0.0, 1.0);
-                let angle = if tumble {
-                    theta0 + sign * sample_angles(&seg.tumble, s)
+                let half = if tumble {
+                    &seg.tumble_half
                 } else {
-                    sign * sample_angles(&seg.flutter, s)
+                    &seg.flutter_half
                 };
-                Quat::from_rotation_z(angle)
+                let local = sample_half(half, (t / duration).clamp(0.0, 1.0));
+                swing_rotation(local, sign, tumble, start_half)
             }
             Self::Curve { start, descent, .. } => {
                 let h = 1e-3;
@@ -338,9 +388,24 @@ fn sample_points(points: &[Vec2; SEGMENT_SAMPLES], s: f32) -> (Vec2, Vec2) {
     (points[i].lerp(points[i + 1], f), Vec2::ZERO)
 }
 
-fn sample_angles(angles: &[f32; SEGMENT_SAMPLES], s: f32) -> f32 {
+/// Lerp of the unit complex numbers (cos θ/2, sin θ/2) at fraction `s` ∈ [0, 1]. Neighbours
+/// differ by at most π/64 in θ/2, so the result's norm is within 3e-4 of 1; the path
+/// normalises the final orientation once.
+fn sample_half(half: &[Vec2; SEGMENT_SAMPLES], s: f32) -> Vec2 {
     let x = s * (SEGMENT_SAMPLES - 1) as f32;
     let i = (x as usize).min(SEGMENT_SAMPLES - 2);
-    let f = x - i as f32;
-    angles[i] + (angles[i + 1] - angles[i]) * f
+    half[i].lerp(half[i + 1], x - i as f32)
+}
+
+/// The rotation about z of a swing: the database's angle (mirrored for a left glide), after
+/// the start angle for tumbling. Unit complex numbers (cos θ/2, sin θ/2) multiply as rotations.
+fn swing_rotation(local: Vec2, sign: f32, tumble: bool, start_half: Vec2) -> Quat {
+    let local = Vec2::new(local.x, sign * local.y);
+    let rotation = if tumble {
+        let (c0, s0) = (start_half.x, start_half.y);
+        Vec2::new(c0 * local.x - s0 * local.y, s0 * local.x + c0 * local.y)
+    } else {
+        local
+    };
+    Quat::from_xyzw(0.0, 0.0, rotation.y, rotation.x)
 }

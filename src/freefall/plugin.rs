@@ -1,7 +1,7 @@
 //! ECS glue: [`FallingObject`], its runtime [`FallState`], the [`Landed`] message and the
 //! [`FreeFallPlugin`].
 
-use std::sync::Arc;
+use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
 use bevy::app::{App, FixedUpdate, Plugin, PostUpdate};
@@ -12,8 +12,7 @@ use bevy::time::{Fixed, Time};
 use bevy::transform::TransformSystems;
 use bevy::transform::components::Transform;
 
-use super::database::TrajectoryDatabase;
-use super::markov::MarkovChain;
+use super::model::FallModel;
 use super::motion::FallScales;
 use super::path::{FallPath, StepOutcome, WindTilt};
 use super::regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape, regime};
@@ -150,31 +149,15 @@ pub struct Landed {
 }
 
 /// Shared settings of every fall.
-#[derive(Resource, Clone, Debug, PartialEq)]
+#[derive(Resource, Clone, Debug, PartialEq, Default)]
 pub struct FreeFallSettings {
     /// Height of the ground, m: objects stop there.
     pub ground_height: f32,
-    /// The Markov chain of motions (validated when built with [`MarkovChain::new`]).
-    pub chain: MarkovChain,
 }
 
-impl Default for FreeFallSettings {
-    fn default() -> Self {
-        Self {
-            ground_height: 0.0,
-            chain: MarkovChain::default(),
-        }
-    }
-}
-
-/// The trajectory database, built once when the plugin is added.
-#[derive(Resource, Clone, Debug)]
-pub struct FallDatabase {
-    /// The database.
-    pub database: Arc<TrajectoryDatabase>,
-    /// How long building it took, s.
-    pub build_seconds: f32,
-}
+/// How long building the [`FallModel`] took when the plugin was added, s.
+#[derive(Resource, Clone, Copy, Debug)]
+pub struct FallModelBuildTime(pub f32);
 
 /// Moves every [`FallingObject`] on the fixed timestep and poses it once per frame.
 #[derive(Default)]
@@ -183,14 +166,13 @@ pub struct FreeFallPlugin;
 impl Plugin for FreeFallPlugin {
     fn build(&self, app: &mut App) {
         crate::configure_sets(app);
-        let start = Instant::now();
-        let database = Arc::new(TrajectoryDatabase::default());
-        let build_seconds = start.elapsed().as_secs_f32();
+        if !app.world().contains_resource::<FallModel>() {
+            let start = Instant::now();
+            let model = FallModel::default();
+            app.insert_resource(FallModelBuildTime(start.elapsed().as_secs_f32()))
+                .insert_resource(model);
+        }
         app.init_resource::<FreeFallSettings>()
-            .insert_resource(FallDatabase {
-                database,
-                build_seconds,
-            })
             .add_message::<Landed>()
             .add_systems(FixedUpdate, step_objects.in_set(WindfallSystems::Simulate))
             // Releasing here (not in FixedUpdate) reads the transform the user set this frame
@@ -207,16 +189,16 @@ impl Plugin for FreeFallPlugin {
 fn release_objects(
     mut objects: Query<(&FallingObject, &Transform, &mut FallState), Changed<FallingObject>>,
     settings: Res<FreeFallSettings>,
-    db: Res<FallDatabase>,
+    model: Res<FallModel>,
 ) {
     for (object, transform, mut state) in &mut objects {
         *state = match object.regime() {
             Ok(regime) => FallState {
                 regime: Some(regime),
                 path: Some(FallPath::new(
-                    &db.database,
+                    &model,
                     object.scales(&regime),
-                    settings.chain.bounded(regime.main),
+                    regime.main,
                     object.seed,
                     transform.translation,
                     settings.ground_height,
@@ -232,35 +214,49 @@ fn release_objects(
     }
 }
 
+/// Steps every fall; objects are independent, so they run in parallel (with Bevy's
+/// `multi_threaded` feature) and the landings are written sorted by entity, so the messages do
+/// not depend on the thread schedule.
 fn step_objects(
     mut objects: Query<(Entity, &FallingObject, &mut FallState)>,
     wind: Option<Res<WindField>>,
-    db: Res<FallDatabase>,
+    model: Res<FallModel>,
     time: Res<Time<Fixed>>,
     mut landed: MessageWriter<Landed>,
 ) {
     let dt = time.delta_secs();
-    let reference_speed = wind.as_ref().map_or(1.0, |w| w.config().reference_speed);
-    for (entity, object, mut state) in &mut objects {
-        let Some(path) = state.path.as_mut() else {
-            continue;
-        };
-        let velocity = match &wind {
-            Some(w) if !path.landed() => w.velocity(path.position()),
-            _ => Vec3::ZERO,
-        };
-        let tilt = WindTilt {
-            max_angle: object.wind_tilt,
-            reference_speed,
-        };
-        if path.advance(&db.database, dt, velocity, &tilt) == StepOutcome::Landed {
-            landed.write(Landed {
-                entity,
-                position: path.position(),
-                flight_time: path.time(),
-            });
-        }
-    }
+    let wind = wind.as_deref();
+    let reference_speed = wind.map_or(1.0, |w| w.config().reference_speed);
+    let landings = Mutex::new(Vec::new());
+    objects
+        .par_iter_mut()
+        .for_each(|(entity, object, mut state)| {
+            let Some(path) = state.path.as_mut() else {
+                return;
+            };
+            let velocity = match wind {
+                Some(w) if !path.landed() => w.velocity(path.position()),
+                _ => Vec3::ZERO,
+            };
+            let tilt = WindTilt {
+                max_angle: object.wind_tilt,
+                reference_speed,
+            };
+            if path.advance(&model, dt, velocity, &tilt) == StepOutcome::Landed {
+                let message = Landed {
+                    entity,
+                    position: path.position(),
+                    flight_time: path.time(),
+                };
+                landings
+                    .lock()
+                    .unwrap_or_else(PoisonError::into_inner)
+                    .push(message);
+            }
+        });
+    let mut landings = landings.into_inner().unwrap_or_else(PoisonError::into_inner);
+    landings.sort_by_key(|l| l.entity);
+    landed.write_batch(landings);
 }
 
 fn pose_objects(mut objects: Query<(&FallState, &mut Transform)>, time: Option<Res<Time<Fixed>>>) {

@@ -5,7 +5,7 @@ use bevy::math::{Vec2, Vec3};
 
 use super::config::{SpatialMode, TemporalMode, WindConfig, WindError};
 use super::profile;
-use crate::spectrum::{GridShape, SpectrumError, Synthesizer, periodic_lerp};
+use crate::spectrum::{GridShape, SpectrumError, Synthesizer, periodic_lerp, periodic_lerp_2d};
 
 /// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
 pub const MAX_REFERENCE_SPEED: f32 = 1.0e4;
@@ -33,6 +33,8 @@ pub struct WindField {
     friction_velocity: f32,
     /// ln(h_ref/z0), the denominator of eq. 14.
     log_reference: f32,
+    /// ln(z0).
+    log_roughness: f32,
     sigma_u: f32,
     along: Vec3,
     across: Vec3,
@@ -75,6 +77,7 @@ impl WindField {
             nodes,
             friction_velocity: 0.0,
             log_reference: 1.0,
+            log_roughness: 0.0,
             sigma_u: 0.0,
             along: Vec3::X,
             across: Vec3::Z,
@@ -96,6 +99,7 @@ impl WindField {
             .unwrap_or_else(|| profile::surface_layer_intensity(c.reference_height, c.roughness));
         self.sigma_u = intensity * c.reference_speed;
         self.log_reference = profile::log_ratio(c.reference_height, c.roughness);
+        self.log_roughness = c.roughness.ln();
         let d = c.direction.normalize();
         self.along = Vec3::new(d.x, 0.0, d.y);
         self.across = self.along.cross(Vec3::Y);
@@ -184,7 +188,12 @@ impl WindField {
         let c = &self.config;
         let height = position.y;
         // Mean speed, turbulence scale and advection speed at this height; one logarithm.
-        let g = profile::log_ratio(height, c.roughness) / self.log_reference; // eq. 14
+        let log_ratio = if height > c.roughness {
+            (height.min(f32::MAX).ln() - self.log_roughness).max(0.0)
+        } else {
+            0.0
+        };
+        let g = log_ratio / self.log_reference; // eq. 14
         let (mean, scale, advection) = match c.spatial {
             SpatialMode::Plane => (c.reference_speed * g, g, c.reference_speed),
             SpatialMode::Volume { .. } => {
@@ -198,6 +207,19 @@ impl WindField {
         let per_cell = 1.0 / f64::from(c.cell_size);
         let x = (f64::from(position.x) - f64::from(self.along.x) * shift) * per_cell;
         let z = (f64::from(position.z) - f64::from(self.along.z) * shift) * per_cell;
+        let n = if self.shape.dims().len() == 2 {
+            periodic_lerp_2d(&self.shape, &self.nodes, x, z)
+        } else {
+            self.sample_nd(position, time, x, z)
+        } * scale
+            * self.sigma();
+        self.along * (mean + n.x) + self.across * n.y + Vec3::Y * n.z
+    }
+
+    /// The turbulence read on a 3- or 4-D grid.
+    fn sample_nd(&self, position: Vec3, time: f64, x: f64, z: f64) -> Vec3 {
+        let c = &self.config;
+        let per_cell = 1.0 / f64::from(c.cell_size);
         let mut coords = [0.0f64; 4];
         let mut axes = 0;
         if let TemporalMode::Evolving { samples, period } = c.temporal {
@@ -211,10 +233,7 @@ impl WindField {
             axes += 1;
         }
         coords[axes] = z;
-        let n = periodic_lerp(&self.shape, &self.nodes, &coords[..self.shape.dims().len()])
-            * scale
-            * self.sigma();
-        self.along * (mean + n.x) + self.across * n.y + Vec3::Y * n.z
+        periodic_lerp(&self.shape, &self.nodes, &coords[..self.shape.dims().len()])
     }
 }
 

@@ -1,0 +1,141 @@
+//! Cost of one fixed step for 10 000 falling objects: wind sampling plus the procedural path,
+//! each part alone, the whole plugin in a headless app, and a drag-particle baseline (the
+//! "particle with drag and lift parameters" the paper says CG tools offer).
+//!
+//! Run: `cargo bench --bench freefall`. Figures are in the README's Performance section.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_windfall::freefall::{
+    FallModel, FallPath, FallingObject, FreeFallPlugin, FreeFallSettings, WindTilt,
+};
+use bevy_windfall::wind::{WindConfig, WindField, WindPlugin};
+use criterion::{BatchSize, Criterion, criterion_main};
+
+const OBJECTS: usize = 10_000;
+const DT: f32 = 1.0 / 60.0;
+
+fn release_point(i: usize) -> Vec3 {
+    let h = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    let f = |shift: u32| ((h >> shift) & 0xFFFF) as f32 / 65535.0;
+    Vec3::new(60.0 * f(0), 5.0 + 10.0 * f(16), 60.0 * f(32))
+}
+
+fn paths(model: &FallModel) -> Vec<FallPath> {
+    (0..OBJECTS)
+        .map(|i| {
+            let object = FallingObject {
+                seed: i as u64,
+                ..FallingObject::default()
+            };
+            let regime = object.regime().unwrap();
+            FallPath::new(
+                model,
+                object.scales(&regime),
+                regime.main,
+                i as u64,
+                release_point(i),
+                f32::NEG_INFINITY,
+            )
+        })
+        .collect()
+}
+
+/// Explicit drag particle: v += (g + c |u − v| (u − v)) dt, x += v dt.
+fn drag_particles(points: &mut [(Vec3, Vec3)], wind: &WindField, dt: f32) {
+    let c = 0.5 * 1.2 * 1.2 * 2.4e-3 / 3.6e-4; // ½ ρ C_D A / m for the default leaf
+    for (x, v) in points.iter_mut() {
+        let relative = wind.velocity(*x) - *v;
+        *v += (Vec3::new(0.0, -9.81, 0.0) + c * relative.length() * relative) * dt;
+        *x += *v * dt;
+    }
+}
+
+fn step(c: &mut Criterion) {
+    let model = FallModel::default();
+    let wind = WindField::new(WindConfig::default()).unwrap();
+    let tilt = WindTilt {
+        max_angle: 0.6,
+        reference_speed: 4.0,
+    };
+    let fresh = paths(&model);
+    let mut group = c.benchmark_group("freefall_step_10k");
+    group
+        .sample_size(30)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3));
+    group.bench_function("procedural_with_wind", |b| {
+        b.iter_batched_ref(
+            || fresh.clone(),
+            |paths| {
+                for p in paths.iter_mut() {
+                    let u = wind.velocity(p.position());
+                    p.advance(&model, DT, u, &tilt);
+                }
+            },
+            BatchSize::LargeInput,
+        )
+    });
+    group.bench_function("procedural_still_air", |b| {
+        b.iter_batched_ref(
+            || fresh.clone(),
+            |paths| {
+                for p in paths.iter_mut() {
+                    p.advance(&model, DT, Vec3::ZERO, &tilt);
+                }
+            },
+            BatchSize::LargeInput,
+        )
+    });
+    let points: Vec<Vec3> = (0..OBJECTS).map(release_point).collect();
+    group.bench_function("wind_sampling_only", |b| {
+        b.iter(|| {
+            let mut sum = Vec3::ZERO;
+            for p in &points {
+                sum += wind.velocity(*p);
+            }
+            black_box(sum)
+        })
+    });
+    let particles: Vec<(Vec3, Vec3)> = points.iter().map(|p| (*p, Vec3::ZERO)).collect();
+    group.bench_function("baseline_drag_particle_with_wind", |b| {
+        b.iter_batched_ref(
+            || particles.clone(),
+            |p| drag_particles(p, &wind, DT),
+            BatchSize::LargeInput,
+        )
+    });
+    group.bench_function("plugin_app_update", |b| {
+        let mut app = App::new();
+        app.add_plugins((MinimalPlugins, TransformPlugin))
+            .insert_resource(Time::<Fixed>::from_seconds(f64::from(DT)))
+            .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
+            .add_plugins((WindPlugin::default(), FreeFallPlugin))
+            .insert_resource(FreeFallSettings {
+                ground_height: -1.0e9,
+            });
+        for i in 0..OBJECTS {
+            app.world_mut().spawn((
+                FallingObject {
+                    seed: i as u64,
+                    ..default()
+                },
+                Transform::from_translation(release_point(i)),
+            ));
+        }
+        app.finish();
+        app.cleanup();
+        app.update();
+        b.iter(|| app.update())
+    });
+    group.finish();
+}
+
+#[allow(missing_docs)]
+mod group {
+    criterion::criterion_group!(benches, super::step);
+}
+criterion_main!(group::benches);

@@ -1,0 +1,55 @@
+//! What every fall shares: the trajectory database and the Markov chain.
+
+use bevy::ecs::resource::Resource;
+
+use super::database::TrajectoryDatabase;
+use super::markov::{BoundedChain, MarkovChain};
+use super::regime::PrimitiveMotion;
+
+/// The trajectory database and the Markov chain, bounded once per main motion (eq. 9) so that a
+/// [`FallPath`](super::FallPath) only carries its main motion. A resource of the
+/// [`FreeFallPlugin`](super::FreeFallPlugin); replace it to use another database or chain.
+#[derive(Resource, Clone, Debug)]
+pub struct FallModel {
+    database: TrajectoryDatabase,
+    chain: MarkovChain,
+    bounded: [BoundedChain; 6],
+}
+
+impl Default for FallModel {
+    fn default() -> Self {
+        Self::new(TrajectoryDatabase::default(), MarkovChain::default())
+    }
+}
+
+impl FallModel {
+    /// A model from a database and a (validated) chain.
+    pub fn new(database: TrajectoryDatabase, chain: MarkovChain) -> Self {
+        Self {
+            database,
+            chain,
+            bounded: PrimitiveMotion::ALL.map(|main| chain.bounded(main)),
+        }
+    }
+
+    /// The trajectory database.
+    pub fn database(&self) -> &TrajectoryDatabase {
+        &self.database
+    }
+
+    /// The Markov chain.
+    pub fn chain(&self) -> &MarkovChain {
+        &self.chain
+    }
+
+    /// Replaces the chain; falls in the air continue with the new one.
+    pub fn set_chain(&mut self, chain: MarkovChain) {
+        self.chain = chain;
+        self.bounded = PrimitiveMotion::ALL.map(|main| chain.bounded(main));
+    }
+
+    /// The chain limited to L1..`main`.
+    pub fn bounded(&self, main: PrimitiveMotion) -> &BoundedChain {
+        &self.bounded[main.index()]
+    }
+}
