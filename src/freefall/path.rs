@@ -184,7 +184,8 @@ impl FallPath {
         if landed {
             next.y = self.ground;
         }
-        let orientation = (tilt.rotation(wind) * self.orientation_now(model.database())).normalize();
+        let orientation =
+            (tilt.rotation(wind) * self.orientation_now(model.database())).normalize();
         self.points = [self.points[1], self.points[2], next];
         self.orientations = [self.orientations[1], orientation];
         if landed {
@@ -363,6 +364,11 @@ impl FallPath {
     }
 }
 
+fn smoothstep(x: f32) -> f32 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -372,7 +378,10 @@ mod tests {
         for i in 0..=1000 {
             let x = -PI / 2.0 + PI * i as f32 / 1000.0;
             let (s, c) = sin_cos_quarter_turn(x);
-            assert!((s - x.sin()).abs() < 4e-6 && (c - x.cos()).abs() < 4e-6, "{x}");
+            assert!(
+                (s - x.sin()).abs() < 4e-6 && (c - x.cos()).abs() < 4e-6,
+                "{x}"
+            );
         }
     }
 
@@ -390,9 +399,4 @@ mod tests {
         assert_eq!(tilt.rotation(Vec3::ZERO), Quat::IDENTITY);
         assert_eq!(tilt.rotation(Vec3::NAN), Quat::IDENTITY);
     }
-}
-
-fn smoothstep(x: f32) -> f32 {
-    let x = x.clamp(0.0, 1.0);
-    x * x * (3.0 - 2.0 * x)
 }

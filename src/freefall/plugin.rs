@@ -254,7 +254,9 @@ fn step_objects(
                     .push(message);
             }
         });
-    let mut landings = landings.into_inner().unwrap_or_else(PoisonError::into_inner);
+    let mut landings = landings
+        .into_inner()
+        .unwrap_or_else(PoisonError::into_inner);
     landings.sort_by_key(|l| l.entity);
     landed.write_batch(landings);
 }

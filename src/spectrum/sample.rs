@@ -54,7 +54,11 @@ where
     let wrap = |c: f64, n: usize| {
         let len = n as f64;
         let c = c - (c / len).floor() * len;
-        let c = if c.is_finite() { c.clamp(0.0, len) } else { 0.0 };
+        let c = if c.is_finite() {
+            c.clamp(0.0, len)
+        } else {
+            0.0
+        };
         let i = (c as usize).min(n - 1);
         (i, (i + 1) % n, (c - i as f64).clamp(0.0, 1.0) as f32)
     };

@@ -1,0 +1,206 @@
+//! The free-fall paper's Fig. 15a: an aluminium coin (radius 1.0 cm, 1.5 mm thick) dropped in a
+//! glass tank of still water from 50 cm flutters down. Its path is traced; its Reynolds number,
+//! I*, main motion and current motion are shown. It is dropped again after it lands.
+//!
+//! `cargo run --example coin_in_water --features example_scenes -- [--frames N] [--screenshot PATH]`
+
+mod common;
+
+use std::collections::VecDeque;
+
+use bevy::prelude::*;
+use bevy_windfall::prelude::*;
+
+/// Tank inside size (x, height, z), m; the floor is at y = 0.
+const TANK: Vec3 = Vec3::new(0.36, 0.62, 0.22);
+const WATER_LEVEL: f32 = 0.56;
+const RELEASE: Vec3 = Vec3::new(0.0, 0.5, 0.0);
+const REST: f32 = 1.5;
+const TRAIL: usize = 400;
+
+fn main() {
+    let mut app = common::example_app("bevy_windfall: coin in water");
+    // Still water: no WindPlugin, only free fall.
+    app.add_plugins(FreeFallPlugin)
+        .insert_resource(FreeFallSettings {
+            ground_height: 0.00075,
+        })
+        .insert_resource(ClearColor(Color::srgb(0.93, 0.93, 0.9)))
+        .add_systems(Startup, setup)
+        .add_systems(
+            FixedUpdate,
+            record_trail.after(bevy_windfall::WindfallSystems::Simulate),
+        )
+        .add_systems(Update, (draw_trail, rest_and_drop, show_info))
+        .run();
+}
+
+#[derive(Component)]
+struct Coin {
+    trail: VecDeque<Vec3>,
+}
+
+#[derive(Component)]
+struct Resting(Timer);
+
+#[derive(Component)]
+struct InfoText;
+
+fn coin() -> FallingObject {
+    FallingObject {
+        shape: Shape::Disk {
+            diameter: 0.02,
+            thickness: 0.0015,
+        },
+        density: 2700.0,
+        fluid: Fluid::WATER,
+        ..default()
+    }
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    commands.spawn((
+        Camera3d::default(),
+        Transform::from_xyz(0.05, 0.42, 0.74).looking_at(Vec3::new(0.0, 0.25, 0.0), Vec3::Y),
+    ));
+    commands.spawn((
+        DirectionalLight {
+            illuminance: 8_000.0,
+            ..default()
+        },
+        Transform::from_xyz(0.6, 1.5, 1.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    commands.insert_resource(GlobalAmbientLight {
+        brightness: 900.0,
+        ..default()
+    });
+    // Table, tank floor, water and glass walls.
+    commands.spawn((
+        Mesh3d(meshes.add(Cuboid::new(1.6, 0.04, 1.0))),
+        MeshMaterial3d(materials.add(Color::srgb(0.45, 0.33, 0.22))),
+        Transform::from_xyz(0.0, -0.03, 0.0),
+    ));
+    commands.spawn((
+        Mesh3d(meshes.add(Cuboid::new(TANK.x, 0.01, TANK.z))),
+        MeshMaterial3d(materials.add(Color::srgb(0.75, 0.78, 0.8))),
+        Transform::from_xyz(0.0, -0.005, 0.0),
+    ));
+    commands.spawn((
+        Mesh3d(meshes.add(Cuboid::new(TANK.x, WATER_LEVEL, TANK.z))),
+        MeshMaterial3d(materials.add(StandardMaterial {
+            base_color: Color::srgba(0.45, 0.7, 0.9, 0.22),
+            alpha_mode: AlphaMode::Blend,
+            perceptual_roughness: 0.1,
+            ..default()
+        })),
+        Transform::from_xyz(0.0, WATER_LEVEL / 2.0, 0.0),
+    ));
+    let glass = materials.add(StandardMaterial {
+        base_color: Color::srgba(0.85, 0.95, 1.0, 0.12),
+        alpha_mode: AlphaMode::Blend,
+        perceptual_roughness: 0.05,
+        reflectance: 0.8,
+        double_sided: true,
+        cull_mode: None,
+        ..default()
+    });
+    commands.spawn((
+        Mesh3d(meshes.add(Cuboid::new(TANK.x + 0.01, TANK.y, TANK.z + 0.01))),
+        MeshMaterial3d(glass),
+        Transform::from_xyz(0.0, TANK.y / 2.0, 0.0),
+    ));
+    // The coin: a disk in its local XZ plane, as FallingObject expects.
+    commands.spawn((
+        coin(),
+        Coin {
+            trail: VecDeque::new(),
+        },
+        Mesh3d(meshes.add(Cylinder::new(0.01, 0.0015))),
+        MeshMaterial3d(materials.add(StandardMaterial {
+            base_color: Color::srgb(0.8, 0.8, 0.82),
+            metallic: 0.9,
+            perceptual_roughness: 0.3,
+            ..default()
+        })),
+        Transform::from_translation(RELEASE),
+    ));
+    commands.spawn((InfoText, common::info_text()));
+}
+
+/// Every fixed step's position, so the trace does not depend on the frame rate.
+fn record_trail(mut coins: Query<(&mut Coin, &FallState)>) {
+    for (mut coin, state) in &mut coins {
+        if let Some(path) = state.path()
+            && !path.landed()
+        {
+            coin.trail.push_back(path.position());
+            if coin.trail.len() > TRAIL {
+                coin.trail.pop_front();
+            }
+        }
+    }
+}
+
+fn draw_trail(coins: Query<&Coin>, mut gizmos: Gizmos) {
+    for coin in &coins {
+        gizmos.linestrip(coin.trail.iter().copied(), Color::srgb(0.85, 0.2, 0.15));
+    }
+}
+
+fn rest_and_drop(
+    mut commands: Commands,
+    mut landed: MessageReader<Landed>,
+    mut coins: Query<(
+        Entity,
+        &mut Coin,
+        &mut Transform,
+        &mut FallingObject,
+        Option<&mut Resting>,
+    )>,
+    time: Res<Time>,
+) {
+    for message in landed.read() {
+        commands
+            .entity(message.entity)
+            .insert(Resting(Timer::from_seconds(REST, TimerMode::Once)));
+    }
+    for (entity, mut coin, mut transform, mut object, resting) in &mut coins {
+        if let Some(mut rest) = resting
+            && rest.0.tick(time.delta()).is_finished()
+        {
+            transform.translation = RELEASE;
+            object.seed += 1;
+            coin.trail.clear();
+            commands.entity(entity).remove::<Resting>();
+        }
+    }
+}
+
+fn show_info(states: Query<&FallState>, mut text: Query<&mut Text, With<InfoText>>) {
+    let (Ok(state), Ok(mut text)) = (states.single(), text.single_mut()) else {
+        return;
+    };
+    let Some(r) = state.regime() else {
+        return;
+    };
+    let now = state
+        .motion()
+        .map_or(String::from("-"), |m| format!("{} {m:?}", m.label()));
+    text.0 = format!(
+        "aluminium disk, r = 1.0 cm, b = 0.15 cm, in water, dropped from 50 cm\n\
+         Re = {:.3e}   I* = {:.2e}   U = {:.3} m/s\n\
+         main motion (phase diagram): {} {:?}\n\
+         now: {}{}",
+        r.reynolds,
+        r.inertia,
+        r.descent_speed,
+        r.main.label(),
+        r.main,
+        now,
+        if state.landed() { " (landed)" } else { "" },
+    );
+}
