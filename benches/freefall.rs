@@ -131,6 +131,23 @@ fn step(c: &mut Criterion) {
         app.update();
         b.iter(|| app.update())
     });
+    // What Bevy itself charges for 10 000 entities whose transforms change every frame
+    // (a trivial system writes them; propagation, change detection, schedule).
+    group.bench_function("baseline_bevy_10k_moving_transforms", |b| {
+        let mut app = App::new();
+        app.add_plugins((MinimalPlugins, TransformPlugin))
+            .add_systems(Update, |mut q: Query<&mut Transform>| {
+                q.par_iter_mut().for_each(|mut t| t.translation.y -= 1e-3);
+            });
+        for i in 0..OBJECTS {
+            app.world_mut()
+                .spawn(Transform::from_translation(release_point(i)));
+        }
+        app.finish();
+        app.cleanup();
+        app.update();
+        b.iter(|| app.update())
+    });
     group.finish();
 }
 

@@ -263,11 +263,11 @@ fn step_objects(
 
 fn pose_objects(mut objects: Query<(&FallState, &mut Transform)>, time: Option<Res<Time<Fixed>>>) {
     let s = time.map_or(1.0, |t| t.overstep_fraction());
-    for (state, mut transform) in &mut objects {
+    objects.par_iter_mut().for_each(|(state, mut transform)| {
         if let Some(path) = state.path() {
             let (position, rotation): (Vec3, Quat) = path.smoothed(s);
             transform.translation = position;
             transform.rotation = rotation;
         }
-    }
+    });
 }
