@@ -3,6 +3,7 @@
 use bevy::app::{App, FixedUpdate, PluginGroup, PluginGroupBuilder};
 use bevy::ecs::schedule::{IntoScheduleConfigs, SystemSet};
 
+pub mod aero;
 pub mod cloth;
 pub mod freefall;
 pub mod spectrum;

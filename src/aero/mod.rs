@@ -1,0 +1,22 @@
+//! Aerodynamics: lift and drag per face on physically driven bodies
+//! (`aerodynamic-lift-and-drag.txt`).
+//!
+//! | quantity | unit |
+//! |---|---|
+//! | velocities v_face, u, v_rel | m/s |
+//! | area A | m² |
+//! | density ρ | kg/m³ |
+//! | C_D, C_L | 1 |
+//! | force | N |
+//!
+//! [`face_force`] is the per-face law (eq. 3.1 and the drag and lift formulas); [`RigidPlate`]
+//! sums it over a plate's faces into a force and a torque and integrates six degrees of freedom
+//! with implicit drag.
+
+mod force;
+mod plate;
+
+pub use force::{AIR_DENSITY, WATER_DENSITY, drag_rate, face_force};
+pub use plate::{
+    AeroCoefficients, AeroError, Face, LIFT_STEP, MAX_SUBSTEPS, PlateState, RigidPlate,
+};

@@ -1,0 +1,460 @@
+//! A rigid plate with six degrees of freedom driven by per-face lift and drag: a physically
+//! falling leaf, card or coin.
+
+use bevy::math::{Mat3, Quat, Vec3};
+use thiserror::Error;
+
+use super::force::{drag_rate, face_force};
+
+/// Fluid and coefficients of a body.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AeroCoefficients {
+    /// C_D (≥ 0). A flat plate broadside: about 1.2.
+    pub drag: f32,
+    /// C_L (≥ 0).
+    pub lift: f32,
+    /// ρ of the fluid, kg/m³ (> 0).
+    pub density: f32,
+}
+
+impl Default for AeroCoefficients {
+    /// A flat plate in air: C_D = 1.2, C_L = 1.0.
+    fn default() -> Self {
+        Self {
+            drag: 1.2,
+            lift: 1.0,
+            density: super::AIR_DENSITY,
+        }
+    }
+}
+
+/// Why a body was rejected.
+#[derive(Clone, Copy, Debug, PartialEq, Error)]
+pub enum AeroError {
+    /// A number outside its valid range.
+    #[error("`{field}` = {value}: {reason}")]
+    Invalid {
+        /// The field's name.
+        field: &'static str,
+        /// The rejected value.
+        value: f32,
+        /// What it must be.
+        reason: &'static str,
+    },
+}
+
+impl AeroError {
+    /// Name of the offending field.
+    pub fn field(&self) -> &'static str {
+        match self {
+            Self::Invalid { field, .. } => field,
+        }
+    }
+}
+
+fn check(field: &'static str, value: f32, ok: bool, reason: &'static str) -> Result<(), AeroError> {
+    if ok && value.is_finite() {
+        Ok(())
+    } else {
+        Err(AeroError::Invalid {
+            field,
+            value,
+            reason,
+        })
+    }
+}
+
+impl AeroCoefficients {
+    /// Checks every field.
+    pub fn validate(&self) -> Result<(), AeroError> {
+        check(
+            "drag",
+            self.drag,
+            self.drag >= 0.0,
+            "must be finite and ≥ 0",
+        )?;
+        check(
+            "lift",
+            self.lift,
+            self.lift >= 0.0,
+            "must be finite and ≥ 0",
+        )?;
+        check(
+            "density",
+            self.density,
+            self.density > 0.0,
+            "must be finite and > 0",
+        )
+    }
+}
+
+/// One face of a body, in the body's frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Face {
+    /// Centre, m.
+    pub center: Vec3,
+    /// Unit normal (either side).
+    pub normal: Vec3,
+    /// Area, m².
+    pub area: f32,
+}
+
+/// A rigid plate: faces, mass, principal moments of inertia (body axes), coefficients.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidPlate {
+    faces: Vec<Face>,
+    mass: f32,
+    inertia: Vec3,
+    coefficients: AeroCoefficients,
+}
+
+/// Position, velocity, orientation and angular velocity (world frame).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlateState {
+    /// Centre of mass, m.
+    pub position: Vec3,
+    /// m/s.
+    pub velocity: Vec3,
+    /// Body to world.
+    pub rotation: Quat,
+    /// rad/s, world frame.
+    pub angular_velocity: Vec3,
+}
+
+impl Default for PlateState {
+    fn default() -> Self {
+        Self {
+            position: Vec3::ZERO,
+            velocity: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            angular_velocity: Vec3::ZERO,
+        }
+    }
+}
+
+/// Largest substeps per step; past it the step's substeps grow (the drag stays implicit).
+pub const MAX_SUBSTEPS: u32 = 256;
+/// Largest h × (lift rate) a substep may take.
+pub const LIFT_STEP: f32 = 0.25;
+
+impl RigidPlate {
+    /// A `length` × `width` × `thickness` plate of `density` (kg/m³), lying in its local XZ plane
+    /// (normal +Y, length along Z), split into `cells` × `cells` faces.
+    pub fn rectangle(
+        length: f32,
+        width: f32,
+        thickness: f32,
+        density: f32,
+        coefficients: AeroCoefficients,
+        cells: usize,
+    ) -> Result<Self, AeroError> {
+        for (field, value) in [
+            ("length", length),
+            ("width", width),
+            ("thickness", thickness),
+            ("density", density),
+        ] {
+            check(field, value, value > 0.0, "must be finite and > 0")?;
+        }
+        coefficients.validate()?;
+        let cells = cells.clamp(1, 64);
+        let area = length * width / (cells * cells) as f32;
+        let mut faces = Vec::with_capacity(cells * cells);
+        for i in 0..cells {
+            for j in 0..cells {
+                let x = width * ((i as f32 + 0.5) / cells as f32 - 0.5);
+                let z = length * ((j as f32 + 0.5) / cells as f32 - 0.5);
+                faces.push(Face {
+                    center: Vec3::new(x, 0.0, z),
+                    normal: Vec3::Y,
+                    area,
+                });
+            }
+        }
+        let mass = density * length * width * thickness;
+        // Thin box: I_x = m (t² + L²)/12, I_y = m (w² + L²)/12, I_z = m (w² + t²)/12.
+        let inertia = mass / 12.0
+            * Vec3::new(
+                thickness * thickness + length * length,
+                width * width + length * length,
+                width * width + thickness * thickness,
+            );
+        Self::new(faces, mass, inertia, coefficients)
+    }
+
+    /// A body from its faces (body frame), mass (kg), principal moments (kg m²) and
+    /// coefficients. Faces with zero area or a zero or non-finite normal exert no force.
+    pub fn new(
+        faces: Vec<Face>,
+        mass: f32,
+        inertia: Vec3,
+        coefficients: AeroCoefficients,
+    ) -> Result<Self, AeroError> {
+        check("mass", mass, mass > 0.0, "must be finite and > 0")?;
+        for (field, value) in [
+            ("inertia.x", inertia.x),
+            ("inertia.y", inertia.y),
+            ("inertia.z", inertia.z),
+        ] {
+            check(field, value, value > 0.0, "must be finite and > 0")?;
+        }
+        coefficients.validate()?;
+        Ok(Self {
+            faces,
+            mass,
+            inertia,
+            coefficients,
+        })
+    }
+
+    /// Mass, kg.
+    pub fn mass(&self) -> f32 {
+        self.mass
+    }
+
+    /// Total face area, m².
+    pub fn area(&self) -> f32 {
+        self.faces.iter().map(|f| f.area.max(0.0)).sum()
+    }
+
+    /// The faces, body frame.
+    pub fn faces(&self) -> &[Face] {
+        &self.faces
+    }
+
+    /// Coefficients.
+    pub fn coefficients(&self) -> &AeroCoefficients {
+        &self.coefficients
+    }
+
+    /// Kinetic plus potential energy, J (potential measured from the origin against
+    /// `gravity`).
+    pub fn energy(&self, s: &PlateState, gravity: Vec3) -> f32 {
+        let (kinetic, potential) = self.energy_terms(s, gravity);
+        kinetic + potential
+    }
+
+    /// Kinetic (translation and rotation) and potential energy, J.
+    pub fn energy_terms(&self, s: &PlateState, gravity: Vec3) -> (f32, f32) {
+        let inertia = self.world_inertia(s.rotation);
+        (
+            0.5 * self.mass * s.velocity.length_squared()
+                + 0.5 * s.angular_velocity.dot(inertia * s.angular_velocity),
+            -self.mass * gravity.dot(s.position),
+        )
+    }
+
+    fn world_inertia(&self, rotation: Quat) -> Mat3 {
+        let r = Mat3::from_quat(rotation);
+        r * Mat3::from_diagonal(self.inertia) * r.transpose()
+    }
+
+    /// Total aerodynamic force and torque (about the centre of mass) in `s`, with `wind(p)` the
+    /// fluid velocity at a world point.
+    pub fn aero_load(&self, s: &PlateState, wind: &impl Fn(Vec3) -> Vec3) -> (Vec3, Vec3) {
+        let c = &self.coefficients;
+        let mut force = Vec3::ZERO;
+        let mut torque = Vec3::ZERO;
+        for face in &self.faces {
+            let r = s.rotation * face.center;
+            let v = s.velocity + s.angular_velocity.cross(r);
+            let f = face_force(
+                v - wind(s.position + r),
+                s.rotation * face.normal,
+                face.area,
+                c.drag,
+                c.lift,
+                c.density,
+            );
+            force += f;
+            torque += r.cross(f);
+        }
+        (force, torque)
+    }
+
+    /// Advances `s` by `dt` under `gravity` and the fluid moving at `wind(p)`.
+    ///
+    /// Each substep solves the drag implicitly (a 6×6 linear system in the new linear and angular
+    /// velocity with each face's drag coefficient frozen: unconditionally stable, and in a
+    /// uniform wind it relaxes toward the wind without overshoot) and takes the lift explicitly,
+    /// with substeps so that h × lift rate ≤ [`LIFT_STEP`]. Aerodynamic forces without wind only
+    /// remove energy (drag opposes each face's motion, lift is perpendicular to it); when
+    /// `wind_is_still` is true, a substep that would add energy through rounding or the explicit
+    /// lift has its velocities scaled back so that the total energy does not grow.
+    pub fn step(
+        &self,
+        s: &mut PlateState,
+        dt: f32,
+        gravity: Vec3,
+        wind: &impl Fn(Vec3) -> Vec3,
+        wind_is_still: bool,
+    ) {
+        if !(dt.is_finite() && dt > 0.0) {
+            return;
+        }
+        let mut remaining = dt;
+        for i in 0..MAX_SUBSTEPS {
+            let rate = self.lift_rate(s, wind);
+            let h = if i + 1 == MAX_SUBSTEPS {
+                remaining
+            } else {
+                remaining.min(LIFT_STEP / rate.max(1e-12))
+            };
+            let previous = *s;
+            self.substep(s, h, gravity, wind);
+            if wind_is_still {
+                self.no_energy_gain(s, &previous, gravity);
+            }
+            remaining -= h;
+            if remaining <= 0.0 {
+                break;
+            }
+        }
+    }
+
+    /// The largest rate at which lift turns a face's relative velocity, 1/s, with the lever arm
+    /// over the radius of gyration for the rotational part.
+    fn lift_rate(&self, s: &PlateState, wind: &impl Fn(Vec3) -> Vec3) -> f32 {
+        let c = &self.coefficients;
+        let min_inertia = self.inertia.min_element();
+        let mut rate = 0.0f32;
+        for face in &self.faces {
+            let r = s.rotation * face.center;
+            let v = s.velocity + s.angular_velocity.cross(r) - wind(s.position + r);
+            let k = drag_rate(v.length(), face.area, c.lift, c.density, self.mass);
+            let lever = 1.0 + self.mass * r.length_squared() / min_inertia;
+            rate = rate.max(k * lever * self.faces.len() as f32);
+        }
+        if rate.is_finite() { rate } else { f32::MAX }
+    }
+
+    fn substep(&self, s: &mut PlateState, h: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
+        let c = &self.coefficients;
+        let inertia = self.world_inertia(s.rotation);
+        // A (6×6, symmetric positive definite) [v'; ω'] = b.
+        let mut a = [[0.0f64; 6]; 6];
+        let mut b = [0.0f64; 6];
+        let m = f64::from(self.mass);
+        for i in 0..3 {
+            a[i][i] = m;
+            for j in 0..3 {
+                a[3 + i][3 + j] = f64::from(inertia.col(j)[i]);
+            }
+        }
+        let momentum = self.mass * s.velocity + h * self.mass * gravity;
+        let spin = inertia * s.angular_velocity
+            - h * s.angular_velocity.cross(inertia * s.angular_velocity);
+        let mut rhs = [momentum, spin];
+        for face in &self.faces {
+            let r = s.rotation * face.center;
+            let u = wind(s.position + r);
+            let v = s.velocity + s.angular_velocity.cross(r);
+            let rel = v - u;
+            let speed = rel.length();
+            let normal = s.rotation * face.normal;
+            // Lift alone (explicit) and the drag coefficient K (F_D = −K v_rel).
+            let lift = face_force(rel, normal, face.area, 0.0, c.lift, c.density);
+            let k = if speed > 0.0 && speed.is_finite() {
+                let drag = face_force(rel, normal, face.area, c.drag, 0.0, c.density);
+                drag.length() / speed
+            } else {
+                0.0
+            };
+            rhs[0] += h * (lift + k * u);
+            rhs[1] += h * r.cross(lift + k * u);
+            // −h K J^T J with J [v; ω] = v − [r]× ω.
+            let x = cross_matrix(r);
+            let hk = f64::from(h * k);
+            for i in 0..3 {
+                a[i][i] += hk;
+                for j in 0..3 {
+                    let xij = f64::from(x.col(j)[i]);
+                    a[i][3 + j] -= hk * xij;
+                    a[3 + i][j] += hk * xij;
+                    // −X X = Xᵀ X.
+                    let xtx: f64 = (0..3)
+                        .map(|l| f64::from(x.col(i)[l]) * f64::from(x.col(j)[l]))
+                        .sum();
+                    a[3 + i][3 + j] += hk * xtx;
+                }
+            }
+        }
+        for i in 0..3 {
+            b[i] = f64::from(rhs[0][i]);
+            b[3 + i] = f64::from(rhs[1][i]);
+        }
+        let Some(x) = solve6(a, b) else {
+            return;
+        };
+        let v = Vec3::new(x[0] as f32, x[1] as f32, x[2] as f32);
+        let w = Vec3::new(x[3] as f32, x[4] as f32, x[5] as f32);
+        if !(v.is_finite() && w.is_finite()) {
+            return;
+        }
+        s.velocity = v;
+        s.angular_velocity = w;
+        s.position += h * v;
+        s.rotation = (Quat::from_scaled_axis(h * w) * s.rotation).normalize();
+    }
+
+    /// Scales the velocities so the energy is that of `previous`; if even zero velocity would
+    /// leave more (the substep climbed higher than its energy allows, at an apex), the body
+    /// stays where it was, at rest.
+    fn no_energy_gain(&self, s: &mut PlateState, previous: &PlateState, gravity: Vec3) {
+        let before = self.energy(previous, gravity);
+        let after = self.energy(s, gravity);
+        if after <= before || !before.is_finite() {
+            return;
+        }
+        let inertia = self.world_inertia(s.rotation);
+        let kinetic = 0.5 * self.mass * s.velocity.length_squared()
+            + 0.5 * s.angular_velocity.dot(inertia * s.angular_velocity);
+        let allowed = kinetic - (after - before);
+        if allowed > 0.0 && kinetic > 0.0 {
+            let k = (allowed / kinetic).sqrt();
+            s.velocity *= k;
+            s.angular_velocity *= k;
+        } else {
+            *s = PlateState {
+                velocity: Vec3::ZERO,
+                angular_velocity: Vec3::ZERO,
+                ..*previous
+            };
+        }
+    }
+}
+
+/// X with X a = r × a.
+fn cross_matrix(r: Vec3) -> Mat3 {
+    Mat3::from_cols(
+        Vec3::new(0.0, r.z, -r.y),
+        Vec3::new(-r.z, 0.0, r.x),
+        Vec3::new(r.y, -r.x, 0.0),
+    )
+}
+
+/// Gaussian elimination with partial pivoting; `None` if singular.
+fn solve6(mut a: [[f64; 6]; 6], mut b: [f64; 6]) -> Option<[f64; 6]> {
+    for col in 0..6 {
+        let pivot = (col..6).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+        if a[pivot][col].abs() < 1e-300 || !a[pivot][col].is_finite() {
+            return None;
+        }
+        a.swap(col, pivot);
+        b.swap(col, pivot);
+        let pivot_row = a[col];
+        for row in col + 1..6 {
+            let f = a[row][col] / pivot_row[col];
+            for (x, p) in a[row][col..].iter_mut().zip(&pivot_row[col..]) {
+                *x -= f * p;
+            }
+            b[row] -= f * b[col];
+        }
+    }
+    let mut x = [0.0; 6];
+    for row in (0..6).rev() {
+        let sum: f64 = (row + 1..6).map(|k| a[row][k] * x[k]).sum();
+        x[row] = (b[row] - sum) / a[row][row];
+    }
+    Some(x)
+}
