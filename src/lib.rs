@@ -11,6 +11,7 @@ pub mod wind;
 
 /// The most used types.
 pub mod prelude {
+    pub use crate::aero::{AeroBody, AeroCoefficients, AeroPlugin, AeroState, RigidPlate};
     pub use crate::cloth::{
         Cloth, ClothAttachment, ClothGrid, ClothParams, ClothPlugin, ClothPreset, ClothState,
     };
@@ -36,6 +37,7 @@ impl PluginGroup for WindfallPlugins {
         let group = PluginGroupBuilder::start::<Self>()
             .add(wind::WindPlugin::default())
             .add(freefall::FreeFallPlugin)
+            .add(aero::AeroPlugin)
             .add(cloth::ClothPlugin);
         #[cfg(feature = "gizmos")]
         let group = group.add(wind::WindGizmosPlugin);

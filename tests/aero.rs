@@ -1,8 +1,12 @@
 //! Aero: the face law's properties, and a rigid plate's terminal velocity, drift, stability and
 //! energy.
 
-use bevy::math::{Quat, Vec3};
+mod common;
+
+use bevy::prelude::*;
 use bevy_windfall::aero::*;
+use bevy_windfall::wind::{WindConfig, WindPlugin};
+use common::{headless_app, ready};
 use proptest::prelude::*;
 
 const G: Vec3 = Vec3::new(0.0, -9.81, 0.0);
@@ -296,4 +300,61 @@ proptest! {
             prop_assert!((s.velocity - gale).length() <= (start.velocity - gale).length().max(200.0));
         }
     }
+}
+
+fn body_app(wind: Option<WindConfig>) -> (App, Entity) {
+    let mut app = headless_app();
+    if let Some(config) = wind {
+        app.add_plugins(WindPlugin {
+            config: Some(config),
+        });
+    }
+    app.add_plugins(AeroPlugin);
+    let body = app
+        .world_mut()
+        .spawn((AeroBody::new(card()), Transform::from_xyz(0.0, 20.0, 0.0)))
+        .id();
+    ready(&mut app);
+    (app, body)
+}
+
+#[test]
+fn plugin_drops_the_card_from_its_transform_in_still_air() {
+    let (mut app, body) = body_app(None);
+    for _ in 0..600 {
+        app.update();
+    }
+    let state = app.world().get::<AeroState>(body).unwrap().state;
+    let plate = card();
+    let c = plate.coefficients();
+    let terminal = (2.0 * plate.mass() * 9.81 / (c.density * c.drag * plate.area())).sqrt();
+    assert!(
+        (-state.velocity.y / terminal - 1.0).abs() < 0.02,
+        "{:?}",
+        state.velocity
+    );
+    let t = app.world().get::<Transform>(body).unwrap();
+    assert_eq!(t.translation, state.position);
+    // 10 s of fall from 20 m at about 1.1 m/s.
+    assert!(
+        state.position.y < 20.0 - 0.9 * terminal * 9.0,
+        "{:?}",
+        state.position
+    );
+}
+
+#[test]
+fn plugin_carries_the_card_downwind() {
+    let calm = WindConfig {
+        reference_speed: 5.0,
+        turbulence_intensity: Some(0.0),
+        ..default()
+    };
+    let (mut app, body) = body_app(Some(calm));
+    for _ in 0..300 {
+        app.update();
+    }
+    let state = app.world().get::<AeroState>(body).unwrap().state;
+    assert!(state.position.x > 1.0, "{:?}", state.position);
+    assert!(state.velocity.x > 0.0 && state.velocity.x < 5.0 * 1.5);
 }

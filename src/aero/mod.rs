@@ -11,12 +11,14 @@
 //!
 //! [`face_force`] is the per-face law (eq. 3.1 and the drag and lift formulas); [`RigidPlate`]
 //! sums it over a plate's faces into a force and a torque and integrates six degrees of freedom
-//! with implicit drag.
+//! with implicit drag; [`AeroPlugin`] moves every [`AeroBody`] on the fixed timestep.
 
 mod force;
 mod plate;
+mod plugin;
 
 pub use force::{AIR_DENSITY, WATER_DENSITY, drag_rate, face_force};
 pub use plate::{
     AeroCoefficients, AeroError, Face, LIFT_STEP, MAX_SUBSTEPS, PlateState, RigidPlate,
 };
+pub use plugin::{AeroBody, AeroPlugin, AeroState};

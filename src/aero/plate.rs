@@ -312,6 +312,26 @@ impl RigidPlate {
         }
     }
 
+    /// The baseline the implicit [`RigidPlate::step`] is measured against: one semi-implicit
+    /// (symplectic) Euler step with every force explicit, no substeps, no safeguard. Unstable
+    /// once dt × ρ C_D A |v_rel| / m exceeds about 2.
+    pub fn step_explicit(
+        &self,
+        s: &mut PlateState,
+        dt: f32,
+        gravity: Vec3,
+        wind: &impl Fn(Vec3) -> Vec3,
+    ) {
+        let (force, torque) = self.aero_load(s, wind);
+        let inertia = self.world_inertia(s.rotation);
+        let spin = inertia * s.angular_velocity;
+        s.velocity += dt * (force / self.mass + gravity);
+        let inverse = inertia.inverse();
+        s.angular_velocity += dt * (inverse * (torque - s.angular_velocity.cross(spin)));
+        s.position += dt * s.velocity;
+        s.rotation = (Quat::from_scaled_axis(dt * s.angular_velocity) * s.rotation).normalize();
+    }
+
     /// The largest rate at which lift turns a face's relative velocity, 1/s, with the lever arm
     /// over the radius of gyration for the rotational part.
     fn lift_rate(&self, s: &PlateState, wind: &impl Fn(Vec3) -> Vec3) -> f32 {
