@@ -1,0 +1,336 @@
+//! A particle cloth (XPBD distance constraints, pinned nodes, gravity) whose triangles receive
+//! lift and drag: a physically simulated flag.
+
+use bevy::math::Vec3;
+
+use super::force::face_force;
+use super::plate::{AeroCoefficients, AeroError};
+use crate::cloth::ClothGrid;
+
+/// Which nodes hold still.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pinning {
+    /// The first column (a flag on a pole).
+    PoleColumn,
+    /// The top row (a curtain on a rod).
+    TopRow,
+}
+
+/// Most substeps per step.
+pub const CLOTH_MAX_SUBSTEPS: u32 = 64;
+
+/// A `rows × columns` grid of particles laid out like [`ClothSim`](crate::cloth::ClothSim)'s
+/// (x along the yarns from the pole, y up, top row at y = 0), in the body's local frame.
+///
+/// Each substep: per triangle, the face law with the triangle's mean velocity and wind, its lift
+/// and drag shared by its three nodes; per node, the velocity update with the drag implicit
+/// (v' = (v + h (g + L/m + K u/m)) / (1 + h K/m), stable at any step, no overshoot of the wind);
+/// then XPBD projection of stretch, shear and bend constraints, and velocities from the moved
+/// positions. At least [`ParticleCloth::min_substeps`] substeps per step, more (up to
+/// [`CLOTH_MAX_SUBSTEPS`]) to keep h × lift rate ≤ 1/4; past that cap the lift is limited to
+/// turning a node's relative velocity by 1/4 rad per substep.
+#[derive(Clone, Debug)]
+pub struct ParticleCloth {
+    grid: ClothGrid,
+    positions: Vec<Vec3>,
+    velocities: Vec<Vec3>,
+    inverse_mass: Vec<f32>,
+    /// (node a, node b, rest length, compliance).
+    constraints: Vec<(u32, u32, f32, f32)>,
+    /// Long-range attachments (node, its pin, rest distance): a node may not be further from
+    /// the pin of its row (pole) or column (rod) than at rest, which keeps a cloth in a gale
+    /// from stretching however few iterations the constraints get.
+    tethers: Vec<(u32, u32, f32)>,
+    node_mass: f32,
+    coefficients: AeroCoefficients,
+    /// Constraint iterations per substep.
+    pub iterations: usize,
+    /// Fewest substeps per step (XPBD converges by substeps more than by iterations).
+    pub min_substeps: u32,
+    lift: Vec<Vec3>,
+    drag: Vec<f32>,
+    lambdas: Vec<f32>,
+    wind: Vec<Vec3>,
+    previous: Vec<Vec3>,
+}
+
+impl ParticleCloth {
+    /// A cloth of `areal_density` kg/m² hanging flat from its pins in the local XY plane.
+    pub fn new(
+        grid: ClothGrid,
+        areal_density: f32,
+        coefficients: AeroCoefficients,
+        pinning: Pinning,
+    ) -> Result<Self, AeroError> {
+        let invalid = |field, value, reason| AeroError::Invalid {
+            field,
+            value,
+            reason,
+        };
+        grid.validate()
+            .map_err(|_| invalid("grid", grid.width, "rows ≥ 2, columns ≥ 2, sizes > 0"))?;
+        if grid.rows < 2 {
+            return Err(invalid("grid.rows", grid.rows as f32, "must be ≥ 2"));
+        }
+        if !(areal_density.is_finite() && areal_density > 0.0) {
+            return Err(invalid(
+                "areal_density",
+                areal_density,
+                "must be finite and > 0",
+            ));
+        }
+        coefficients.validate()?;
+        let (rows, columns) = (grid.rows, grid.columns);
+        let (dx, dy) = (grid.segment(), grid.row_spacing());
+        // A millimetre ripple out of the plane, so that the sheet can fold rather than hang in its
+        // own plane like a board (a real flag is never exactly flat).
+        let positions: Vec<Vec3> = (0..rows)
+            .flat_map(|k| {
+                (0..columns).map(move |j| {
+                    let ripple = 1e-3 * ((j as f32 * 0.9).sin() + (k as f32 * 1.3).cos());
+                    Vec3::new(j as f32 * dx, -(k as f32) * dy, ripple)
+                })
+            })
+            .collect();
+        let node_mass = areal_density * grid.width * grid.height / (rows * columns) as f32;
+        let inverse_mass = (0..rows * columns)
+            .map(|i| {
+                let (k, j) = (i / columns, i % columns);
+                let pinned = match pinning {
+                    Pinning::PoleColumn => j == 0,
+                    Pinning::TopRow => k == 0,
+                };
+                if pinned { 0.0 } else { 1.0 / node_mass }
+            })
+            .collect();
+        let mut constraints = Vec::new();
+        let index = |k: usize, j: usize| (k * columns + j) as u32;
+        let mut link = |a: u32, b: u32, compliance: f32| {
+            let rest = positions[a as usize].distance(positions[b as usize]);
+            constraints.push((a, b, rest, compliance));
+        };
+        for k in 0..rows {
+            for j in 0..columns {
+                if j + 1 < columns {
+                    link(index(k, j), index(k, j + 1), 0.0);
+                }
+                if k + 1 < rows {
+                    link(index(k, j), index(k + 1, j), 0.0);
+                }
+                if k + 1 < rows && j + 1 < columns {
+                    link(index(k, j), index(k + 1, j + 1), 1e-4);
+                    link(index(k + 1, j), index(k, j + 1), 1e-4);
+                }
+                if j + 2 < columns {
+                    link(index(k, j), index(k, j + 2), 1e-2);
+                }
+                if k + 2 < rows {
+                    link(index(k, j), index(k + 2, j), 1e-2);
+                }
+            }
+        }
+        let tethers = (0..rows * columns)
+            .filter_map(|i| {
+                let (k, j) = (i / columns, i % columns);
+                let pin = match pinning {
+                    Pinning::PoleColumn if j > 0 => index(k, 0),
+                    Pinning::TopRow if k > 0 => index(0, j),
+                    _ => return None,
+                };
+                let rest = positions[i].distance(positions[pin as usize]);
+                Some((i as u32, pin, rest))
+            })
+            .collect();
+        let n = rows * columns;
+        Ok(Self {
+            tethers,
+            grid,
+            velocities: vec![Vec3::ZERO; n],
+            previous: positions.clone(),
+            positions,
+            inverse_mass,
+            constraints,
+            node_mass,
+            coefficients,
+            iterations: 4,
+            min_substeps: 8,
+            lift: vec![Vec3::ZERO; n],
+            drag: vec![0.0; n],
+            lambdas: Vec::new(),
+            wind: vec![Vec3::ZERO; n],
+        })
+    }
+
+    /// Node positions, row-major (local frame).
+    pub fn positions(&self) -> &[Vec3] {
+        &self.positions
+    }
+
+    /// Node velocities.
+    pub fn velocities(&self) -> &[Vec3] {
+        &self.velocities
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &ClothGrid {
+        &self.grid
+    }
+
+    /// Mass of one node, kg.
+    pub fn node_mass(&self) -> f32 {
+        self.node_mass
+    }
+
+    /// Largest |length / rest − 1| over the stretch (row and column) constraints.
+    pub fn max_strain(&self) -> f32 {
+        self.constraints
+            .iter()
+            .filter(|c| c.3 == 0.0)
+            .map(|&(a, b, rest, _)| {
+                (self.positions[a as usize].distance(self.positions[b as usize]) / rest - 1.0).abs()
+            })
+            .fold(0.0, f32::max)
+    }
+
+    /// Kinetic plus potential energy of the free nodes, J.
+    pub fn energy(&self, gravity: Vec3) -> f32 {
+        self.positions
+            .iter()
+            .zip(&self.velocities)
+            .zip(&self.inverse_mass)
+            .filter(|(_, w)| **w > 0.0)
+            .map(|((p, v), _)| self.node_mass * (0.5 * v.length_squared() - gravity.dot(*p)))
+            .sum()
+    }
+
+    /// Advances by `dt` under `gravity` in the fluid velocity `wind(p)` (local frame).
+    pub fn step(&mut self, dt: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
+        if !(dt.is_finite() && dt > 0.0) {
+            return;
+        }
+        let mut remaining = dt;
+        let longest = dt / self.min_substeps.clamp(1, CLOTH_MAX_SUBSTEPS) as f32;
+        for i in 0..CLOTH_MAX_SUBSTEPS {
+            for (u, p) in self.wind.iter_mut().zip(&self.positions) {
+                let w = wind(*p);
+                *u = if w.is_finite() { w } else { Vec3::ZERO };
+            }
+            let rate = self.loads();
+            let mut h = if i + 1 == CLOTH_MAX_SUBSTEPS {
+                remaining
+            } else {
+                remaining.min(longest).min(0.25 / rate.max(1e-12))
+            };
+            // Velocities come from (x − x₀) / h: never leave a sliver of a substep for later.
+            if remaining - h < 0.01 * h {
+                h = remaining;
+            }
+            self.substep(h, gravity);
+            remaining -= h;
+            if remaining <= 0.0 {
+                break;
+            }
+        }
+    }
+
+    /// Lift per node and drag coefficient per node from every triangle; returns the largest
+    /// lift rate (1/s).
+    fn loads(&mut self) -> f32 {
+        let c = self.coefficients;
+        let columns = self.grid.columns;
+        self.lift.fill(Vec3::ZERO);
+        self.drag.fill(0.0);
+        let mut rate = 0.0f32;
+        for k in 0..self.grid.rows - 1 {
+            for j in 0..columns - 1 {
+                let a = k * columns + j;
+                let (b, cc, d) = (a + columns, a + 1, a + columns + 1);
+                for [p, q, r] in [[a, b, cc], [cc, b, d]] {
+                    let (xp, xq, xr) = (self.positions[p], self.positions[q], self.positions[r]);
+                    let cross = (xq - xp).cross(xr - xp);
+                    let area = 0.5 * cross.length();
+                    let v = (self.velocities[p] + self.velocities[q] + self.velocities[r]) / 3.0;
+                    let u = (self.wind[p] + self.wind[q] + self.wind[r]) / 3.0;
+                    let rel = v - u;
+                    let lift = face_force(rel, cross, area, 0.0, c.lift, c.density);
+                    let speed = rel.length();
+                    let k_drag = if speed > 0.0 {
+                        face_force(rel, cross, area, c.drag, 0.0, c.density).length() / speed
+                    } else {
+                        0.0
+                    };
+                    for node in [p, q, r] {
+                        self.lift[node] += lift / 3.0;
+                        self.drag[node] += k_drag / 3.0;
+                    }
+                    let r = c.density * c.lift * area * speed / self.node_mass;
+                    if r.is_finite() {
+                        rate = rate.max(r);
+                    }
+                }
+            }
+        }
+        rate
+    }
+
+    fn substep(&mut self, h: f32, gravity: Vec3) {
+        let m = self.node_mass;
+        self.previous.copy_from_slice(&self.positions);
+        for i in 0..self.positions.len() {
+            if self.inverse_mass[i] == 0.0 {
+                self.velocities[i] = Vec3::ZERO;
+                continue;
+            }
+            let k = self.drag[i];
+            // Lift may turn the node's relative velocity by at most 1/4 rad per substep: a
+            // limiter that only binds when the substep cap is reached (gales, huge steps).
+            let mut lift = self.lift[i] / m;
+            let most = 0.25 * (self.velocities[i] - self.wind[i]).length() / h;
+            if lift.length() > most {
+                lift = lift.normalize_or_zero() * most;
+            }
+            let v = (self.velocities[i] + h * (gravity + lift + k * self.wind[i] / m))
+                / (1.0 + h * k / m);
+            self.velocities[i] = if v.is_finite() { v } else { Vec3::ZERO };
+            self.positions[i] += h * self.velocities[i];
+        }
+        // XPBD: λ per constraint starts at zero each substep.
+        self.lambdas.clear();
+        self.lambdas.resize(self.constraints.len(), 0.0);
+        for _ in 0..self.iterations.max(1) {
+            for (lambda, &(a, b, rest, compliance)) in
+                self.lambdas.iter_mut().zip(&self.constraints)
+            {
+                let (a, b) = (a as usize, b as usize);
+                let (wa, wb) = (self.inverse_mass[a], self.inverse_mass[b]);
+                let delta = self.positions[a] - self.positions[b];
+                let length = delta.length();
+                if wa + wb == 0.0 || length <= 1e-12 || !length.is_finite() {
+                    continue;
+                }
+                let alpha = compliance / (h * h);
+                let dl = (-(length - rest) - alpha * *lambda) / (wa + wb + alpha);
+                *lambda += dl;
+                let n = delta / length;
+                self.positions[a] += wa * dl * n;
+                self.positions[b] -= wb * dl * n;
+            }
+        }
+        for &(node, pin, rest) in &self.tethers {
+            let (node, pin) = (node as usize, pin as usize);
+            let delta = self.positions[node] - self.positions[pin];
+            let length = delta.length();
+            if length > rest && length.is_finite() {
+                self.positions[node] = self.positions[pin] + delta * (rest / length);
+            }
+        }
+        for ((v, p), q) in self
+            .velocities
+            .iter_mut()
+            .zip(&self.positions)
+            .zip(&self.previous)
+        {
+            *v = (*p - *q) / h;
+        }
+    }
+}
