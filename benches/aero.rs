@@ -1,5 +1,6 @@
-//! Aero costs: `face_force` over 100 000 faces, and one fixed step of a physically driven leaf
-//! (a `RigidPlate` of 2 × 2 faces) against the procedural `FallingObject` leaf, in the same wind.
+//! Aero costs: `face_force` over 100 000 faces; one fixed step of a physically driven leaf (a
+//! `RigidPlate` of 2 × 2 faces) against the procedural `FallingObject` leaf in the same wind;
+//! one step of the same flag grid as a P-descriptor `ClothSim` and as a `ParticleCloth`.
 //!
 //! Run: `cargo bench --bench aero`. Figures are in the README's Performance section.
 
@@ -7,7 +8,10 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use bevy::math::Vec3;
-use bevy_windfall::aero::{AIR_DENSITY, AeroCoefficients, PlateState, RigidPlate, face_force};
+use bevy_windfall::aero::{
+    AIR_DENSITY, AeroCoefficients, ParticleCloth, Pinning, PlateState, RigidPlate, face_force,
+};
+use bevy_windfall::cloth::{ClothAttachment, ClothGrid, ClothPreset, ClothSim};
 use bevy_windfall::freefall::{FallModel, FallPath, FallingObject, WindTilt};
 use bevy_windfall::wind::{WindConfig, WindField};
 use criterion::{BatchSize, Criterion, criterion_main};
@@ -93,6 +97,33 @@ fn faces(c: &mut Criterion) {
             },
             BatchSize::SmallInput,
         )
+    });
+    // The same 24 × 16 flag: P-descriptor (advance + rebuild) against the particle cloth.
+    let grid = ClothGrid {
+        rows: 16,
+        columns: 24,
+        width: 1.5,
+        height: 1.0,
+    };
+    let params = ClothPreset::FlagGentleFrozen.params();
+    let mut procedural = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
+    group.bench_function("flag_step_24x16/procedural", |b| {
+        b.iter(|| {
+            procedural.advance(DT, params.wind_speed);
+            procedural.rebuild();
+            black_box(procedural.positions()[0])
+        })
+    });
+    let mut physical =
+        ParticleCloth::new(grid, 0.15, AeroCoefficients::default(), Pinning::PoleColumn).unwrap();
+    let gravity = Vec3::new(0.0, -9.81, 0.0);
+    group.bench_function("flag_step_24x16/physical_particles", |b| {
+        b.iter(|| {
+            physical.step(DT, gravity, &|p| {
+                wind.velocity(p + Vec3::new(0.0, 5.0, 0.0))
+            });
+            black_box(physical.positions()[0])
+        })
     });
     group.finish();
 }

@@ -33,27 +33,24 @@ pub fn face_force(
     lift: f32,
     density: f32,
 ) -> Vec3 {
-    let speed2 = v_rel.length_squared();
-    let n = normal.normalize_or_zero();
+    // With a = |n · v_rel| / |n| = cos θ |v_rel| and n' the normal turned toward v_rel:
+    // F_D = −½ C_D ρ A a v_rel and F_L = ½ C_L ρ A a (a v̂_rel − |v_rel| n'): the formulas above,
+    // with two square roots and one division.
     let scale = 0.5 * density * area;
-    if !(speed2 > 0.0 && speed2.is_finite() && scale > 0.0 && scale.is_finite())
-        || n == Vec3::ZERO
-        || !(drag.is_finite() && lift.is_finite())
-    {
-        return Vec3::ZERO;
+    let n2 = normal.length_squared();
+    let speed2 = v_rel.length_squared();
+    if !(speed2 > 0.0 && n2 > 0.0 && scale > 0.0) {
+        return Vec3::ZERO; // also false for NaN
     }
     let speed = speed2.sqrt();
-    let v_hat = v_rel / speed;
-    let along = n.dot(v_hat);
-    let (n, c) = if along < 0.0 {
-        (-n, -along)
+    let inv_n = 1.0 / n2.sqrt();
+    let along = normal.dot(v_rel) * inv_n;
+    let (a, n) = if along < 0.0 {
+        (-along, -normal * inv_n)
     } else {
-        (n, along)
+        (along, normal * inv_n)
     };
-    // û = c v̂ − n (perpendicular to v̂ up to rounding; remove the rest exactly).
-    let u_hat = c * v_hat - n;
-    let u_hat = u_hat - u_hat.dot(v_hat) * v_hat;
-    let force = scale * speed2 * c * (drag * -v_hat + lift * u_hat);
+    let force = (scale * a) * (lift * (a / speed * v_rel - speed * n) - drag * v_rel);
     if force.is_finite() { force } else { Vec3::ZERO }
 }
 

@@ -23,4 +23,6 @@ pub use force::{AIR_DENSITY, WATER_DENSITY, drag_rate, face_force};
 pub use plate::{
     AeroCoefficients, AeroError, Face, LIFT_STEP, MAX_SUBSTEPS, PlateState, RigidPlate,
 };
-pub use plugin::{AeroBody, AeroPlugin, AeroState};
+pub use plugin::{
+    AeroBody, AeroPlugin, AeroState, PhysicalCloth, PhysicalClothInvalid, PhysicalClothState,
+};
