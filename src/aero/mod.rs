@@ -13,11 +13,15 @@
 //! sums it over a plate's faces into a force and a torque and integrates six degrees of freedom
 //! with implicit drag; [`AeroPlugin`] moves every [`AeroBody`] on the fixed timestep.
 
+#[cfg(feature = "avian")]
+mod avian;
 mod cloth;
 mod force;
 mod plate;
 mod plugin;
 
+#[cfg(feature = "avian")]
+pub use avian::{AvianAero, AvianAeroPlugin};
 pub use cloth::{CLOTH_MAX_SUBSTEPS, ParticleCloth, Pinning};
 pub use force::{AIR_DENSITY, WATER_DENSITY, drag_rate, face_force};
 pub use plate::{

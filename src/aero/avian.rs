@@ -1,0 +1,129 @@
+//! Lift and drag on avian3d rigid bodies (feature `avian`).
+
+use avian3d::prelude::ReadRigidBodyForces;
+use avian3d::prelude::{ComputedCenterOfMass, ComputedMass, Forces, WriteRigidBodyForces};
+use bevy::app::{App, FixedUpdate, Plugin};
+use bevy::ecs::prelude::*;
+use bevy::math::Vec3;
+use bevy::mesh::{Indices, Mesh, VertexAttributeValues};
+use bevy::time::{Fixed, Time};
+
+use super::force::face_force;
+use super::plate::{AeroCoefficients, AeroError, Face};
+use crate::WindfallSystems;
+use crate::wind::WindField;
+
+/// Per-face lift and drag for an avian3d rigid body: put it beside `RigidBody::Dynamic` and a
+/// collider; [`AvianAeroPlugin`] applies the summed force and torque through avian's
+/// [`Forces`] each fixed step, from the [`WindField`] (still air without one).
+///
+/// Avian integrates forces explicitly, which is unstable for light bodies in strong wind
+/// (dt × ρ C_D A |v_rel| / m above about 2). The plugin therefore caps the aerodynamic force so
+/// that in one step it can change the body's velocity by at most its velocity relative to the
+/// air at its centre of mass: drag can stop a body relative to the wind, never fling it past.
+#[derive(Component, Clone, Debug)]
+pub struct AvianAero {
+    /// Faces in the body's local frame.
+    pub faces: Vec<Face>,
+    /// Coefficients and fluid.
+    pub coefficients: AeroCoefficients,
+}
+
+impl AvianAero {
+    /// One face per triangle of `mesh` (a triangle list with positions). The face law is
+    /// two-sided: build from one side of a double-sided mesh, or the area counts twice.
+    pub fn from_mesh(mesh: &Mesh, coefficients: AeroCoefficients) -> Result<Self, AeroError> {
+        coefficients.validate()?;
+        let no_positions = AeroError::Invalid {
+            field: "mesh",
+            value: 0.0,
+            reason: "needs Float32x3 positions",
+        };
+        let Some(VertexAttributeValues::Float32x3(positions)) =
+            mesh.attribute(Mesh::ATTRIBUTE_POSITION)
+        else {
+            return Err(no_positions);
+        };
+        let corners: Vec<usize> = match mesh.indices() {
+            Some(Indices::U16(i)) => i.iter().map(|&k| usize::from(k)).collect(),
+            Some(Indices::U32(i)) => i.iter().map(|&k| k as usize).collect(),
+            None => (0..positions.len()).collect(),
+        };
+        let faces = corners
+            .chunks_exact(3)
+            .filter_map(|t| {
+                let [a, b, c] =
+                    [t[0], t[1], t[2]].map(|k| positions.get(k).map(|&p| Vec3::from(p)));
+                let (a, b, c) = (a?, b?, c?);
+                let cross = (b - a).cross(c - a);
+                let area = 0.5 * cross.length();
+                (area > 0.0 && area.is_finite()).then(|| Face {
+                    center: (a + b + c) / 3.0,
+                    normal: cross / (2.0 * area),
+                    area,
+                })
+            })
+            .collect();
+        Ok(Self {
+            faces,
+            coefficients,
+        })
+    }
+}
+
+/// Applies [`AvianAero`] forces in `FixedUpdate` ([`WindfallSystems::Simulate`]), before avian's
+/// step in `FixedPostUpdate`. Add it beside `PhysicsPlugins`.
+pub struct AvianAeroPlugin;
+
+impl Plugin for AvianAeroPlugin {
+    fn build(&self, app: &mut App) {
+        crate::configure_sets(app);
+        app.add_systems(FixedUpdate, apply_aero.in_set(WindfallSystems::Simulate));
+    }
+}
+
+fn apply_aero(
+    mut bodies: Query<(&AvianAero, Forces, &ComputedCenterOfMass, &ComputedMass)>,
+    wind: Option<Res<WindField>>,
+    time: Res<Time<Fixed>>,
+) {
+    let dt = time.delta_secs();
+    let wind = wind.as_deref();
+    let air = |p: Vec3| wind.map_or(Vec3::ZERO, |w| w.velocity(p));
+    for (aero, mut forces, com, mass) in &mut bodies {
+        let position = forces.position().0;
+        let rotation = forces.rotation().0;
+        let (v, w) = (forces.linear_velocity(), forces.angular_velocity());
+        let centre = position + rotation * com.0;
+        let c = &aero.coefficients;
+        let mut total = Vec3::ZERO;
+        let mut torque = Vec3::ZERO;
+        for face in &aero.faces {
+            let point = position + rotation * face.center;
+            let arm = point - centre;
+            let rel = v + w.cross(arm) - air(point);
+            let f = face_force(
+                rel,
+                rotation * face.normal,
+                face.area,
+                c.drag,
+                c.lift,
+                c.density,
+            );
+            total += f;
+            torque += arm.cross(f);
+        }
+        // The cap: |F| dt / m ≤ |v − u| at the centre of mass.
+        let m = mass.value();
+        let limit = m * (v - air(centre)).length() / dt.max(1e-6);
+        let k = if total.length() > limit && total.length() > 0.0 {
+            limit / total.length()
+        } else {
+            1.0
+        };
+        if (total * k).is_finite() && (torque * k).is_finite() {
+            forces.apply_force(total * k);
+            forces.apply_torque(torque * k);
+        }
+    }
+}
