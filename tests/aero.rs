@@ -540,3 +540,20 @@ mod avian {
         assert!(v.x > 30.0, "{v:?}");
     }
 }
+
+#[test]
+fn physical_flag_is_deterministic() {
+    let run = || {
+        let mut cloth = flag(0.15);
+        let wind = |p: Vec3| Vec3::new(6.0 + (p.y * 3.0).sin(), 0.5 * (p.x * 5.0).cos(), 1.0);
+        for _ in 0..120 {
+            cloth.step(1.0 / 60.0, G, &wind);
+        }
+        cloth
+            .positions()
+            .iter()
+            .flat_map(|p| p.to_array().map(f32::to_bits))
+            .collect::<Vec<u32>>()
+    };
+    assert_eq!(run(), run());
+}
