@@ -260,7 +260,8 @@ impl Piece {
         let last = SEGMENT_SAMPLES - 1;
         let s = t / duration;
         let x = s.clamp(0.0, 1.0) * last as f32;
-        let i = (x as usize).min(last - 1);
+        // x ∈ [0, last]: the i32 conversion is the cheap one.
+        let i = (x as i32).clamp(0, last as i32 - 1) as usize;
         let f = x - i as f32;
         let mut p = seg.points[i].lerp(seg.points[i + 1], f);
         if s > 1.0 {

@@ -50,10 +50,18 @@ impl WindTilt {
 /// sin and cos of |x| ≤ π/2 by their Taylor series to x¹⁰ (error < 4e-6): no range reduction
 /// and no library call on the per-object hot path.
 fn sin_cos_quarter_turn(x: f32) -> (f32, f32) {
+    // Horner form with the factorials' reciprocals as constants (multiplications, no divisions).
+    const S: [f32; 4] = [1.0 / 6.0, 1.0 / 120.0, 1.0 / 5040.0, 1.0 / 362_880.0];
+    const C: [f32; 5] = [
+        1.0 / 2.0,
+        1.0 / 24.0,
+        1.0 / 720.0,
+        1.0 / 40_320.0,
+        1.0 / 3_628_800.0,
+    ];
     let x2 = x * x;
-    let sin = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
-    let cos = 1.0
-        - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
+    let sin = x * (1.0 - x2 * (S[0] - x2 * (S[1] - x2 * (S[2] - x2 * S[3]))));
+    let cos = 1.0 - x2 * (C[0] - x2 * (C[1] - x2 * (C[2] - x2 * (C[3] - x2 * C[4]))));
     (sin, cos)
 }
 
@@ -199,6 +207,15 @@ impl FallPath {
     /// Still-fluid displacement over `dt`, crossing pieces as needed.
     fn still_step(&mut self, model: &FallModel, dt: f32) -> Vec3 {
         let db = model.database();
+        // The usual step: inside one piece, no blend.
+        if self.previous.is_none() && self.piece_time + dt < self.piece.duration() {
+            self.piece_time += dt;
+            let (end, tilt) = self.piece.sample(db, self.piece_time);
+            let inc = end - self.piece_offset;
+            self.piece_offset = end;
+            self.piece_tilt = tilt;
+            return self.yaw * inc;
+        }
         let mut remaining = dt;
         let mut delta = Vec3::ZERO;
         let blend = BLEND_SWINGS * self.scales.swing_time();
@@ -328,9 +345,9 @@ impl FallPath {
         self.points[2]
     }
 
-    /// The latest orientation.
+    /// The latest orientation (normalised).
     pub fn orientation(&self) -> Quat {
-        self.orientations[1]
+        self.orientations[1].normalize()
     }
 
     /// f(t): the still-fluid displacement since release.
