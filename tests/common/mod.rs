@@ -107,3 +107,17 @@ pub fn mean_variance(values: &[f32]) -> (f64, f64) {
         / n;
     (mean, var)
 }
+
+/// The free-fall paper's coin: aluminium, radius 1.0 cm, 1.5 mm thick, in water.
+pub fn paper_coin() -> bevy_windfall::freefall::FallingObject {
+    use bevy_windfall::freefall::{FallingObject, Fluid, Shape};
+    FallingObject {
+        shape: Shape::Disk {
+            diameter: 0.02,
+            thickness: 0.0015,
+        },
+        density: 2700.0,
+        fluid: Fluid::WATER,
+        ..FallingObject::default()
+    }
+}
