@@ -79,31 +79,15 @@ fn setup(
         Camera3d::default(),
         Transform::from_xyz(0.0, 3.4, 10.5).looking_at(Vec3::new(0.0, 3.0, 0.0), Vec3::Y),
     ));
-    commands.spawn((
-        DirectionalLight {
-            illuminance: 9_000.0,
-            ..default()
-        },
-        Transform::from_xyz(-4.0, 9.0, 7.0).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    commands.insert_resource(GlobalAmbientLight {
-        brightness: 700.0,
-        ..default()
-    });
-    commands.spawn((
-        Mesh3d(meshes.add(Plane3d::default().mesh().size(60.0, 60.0))),
-        MeshMaterial3d(materials.add(Color::srgb(0.38, 0.52, 0.28))),
-    ));
+    common::meadow(
+        &mut commands,
+        &mut meshes,
+        &mut materials,
+        Vec3::new(-4.0, 9.0, 7.0),
+        60.0,
+    );
     let pole = materials.add(Color::srgb(0.3, 0.3, 0.32));
-    let cloth_material = |materials: &mut Assets<StandardMaterial>, color| {
-        materials.add(StandardMaterial {
-            base_color: color,
-            double_sided: true,
-            cull_mode: None,
-            perceptual_roughness: 0.8,
-            ..default()
-        })
-    };
+    let cloth_material = common::two_sided;
     let grid = ClothGrid {
         rows: 16,
         columns: 24,

@@ -85,21 +85,13 @@ fn setup(
         Camera3d::default(),
         Transform::from_xyz(-4.0, 3.0, 14.0).looking_at(Vec3::new(1.5, 3.4, 0.0), Vec3::Y),
     ));
-    commands.spawn((
-        DirectionalLight {
-            illuminance: 9_000.0,
-            ..default()
-        },
-        Transform::from_xyz(-5.0, 10.0, 6.0).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    commands.insert_resource(GlobalAmbientLight {
-        brightness: 700.0,
-        ..default()
-    });
-    commands.spawn((
-        Mesh3d(meshes.add(Plane3d::default().mesh().size(80.0, 80.0))),
-        MeshMaterial3d(materials.add(Color::srgb(0.38, 0.52, 0.28))),
-    ));
+    common::meadow(
+        &mut commands,
+        &mut meshes,
+        &mut materials,
+        Vec3::new(-5.0, 10.0, 6.0),
+        80.0,
+    );
     // The tree: a trunk and a few overlapping crowns, open underneath so leaves can be seen
     // leaving it.
     let bark = materials.add(Color::srgb(0.33, 0.22, 0.14));
@@ -133,15 +125,7 @@ fn setup(
         Color::srgb(0.55, 0.45, 0.10),
         Color::srgb(0.95, 0.78, 0.25),
     ]
-    .map(|c| {
-        materials.add(StandardMaterial {
-            base_color: c,
-            double_sided: true,
-            cull_mode: None,
-            perceptual_roughness: 0.8,
-            ..default()
-        })
-    });
+    .map(|c| common::two_sided(&mut materials, c));
     commands.spawn((InfoText, common::info_text()));
     for i in 0..LEAVES {
         let rng = &mut spawner.0;

@@ -113,3 +113,43 @@ pub fn info_text() -> impl Bundle {
         },
     )
 }
+
+/// A sunlit meadow: a directional light from `sun` toward the origin, ambient light and a grass
+/// plane `size` metres across at y = 0.
+pub fn meadow(
+    commands: &mut Commands,
+    meshes: &mut Assets<Mesh>,
+    materials: &mut Assets<StandardMaterial>,
+    sun: Vec3,
+    size: f32,
+) {
+    commands.spawn((
+        DirectionalLight {
+            illuminance: 9_000.0,
+            ..default()
+        },
+        Transform::from_translation(sun).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    commands.insert_resource(GlobalAmbientLight {
+        brightness: 700.0,
+        ..default()
+    });
+    commands.spawn((
+        Mesh3d(meshes.add(Plane3d::default().mesh().size(size, size))),
+        MeshMaterial3d(materials.add(Color::srgb(0.38, 0.52, 0.28))),
+    ));
+}
+
+/// A matte material seen from both sides (leaves, cloth).
+pub fn two_sided(
+    materials: &mut Assets<StandardMaterial>,
+    color: Color,
+) -> Handle<StandardMaterial> {
+    materials.add(StandardMaterial {
+        base_color: color,
+        double_sided: true,
+        cull_mode: None,
+        perceptual_roughness: 0.8,
+        ..default()
+    })
+}
