@@ -40,7 +40,10 @@ impl PluginGroup for WindfallPlugins {
             .add(aero::AeroPlugin)
             .add(cloth::ClothPlugin);
         #[cfg(feature = "gizmos")]
-        let group = group.add(wind::WindGizmosPlugin);
+        let group = group
+            .add(wind::WindGizmosPlugin)
+            .add(freefall::FallGizmosPlugin)
+            .add(cloth::ClothGizmosPlugin);
         group
     }
 }

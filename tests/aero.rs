@@ -557,3 +557,35 @@ fn physical_flag_is_deterministic() {
     };
     assert_eq!(run(), run());
 }
+
+#[test]
+fn coefficients_can_be_tuned_live_and_bad_ones_are_refused_by_name() {
+    let mut plate = card();
+    let before = *plate.coefficients();
+    let bad = AeroCoefficients {
+        drag: -1.0,
+        ..before
+    };
+    assert_eq!(
+        plate.set_coefficients(bad).map_err(|e| e.field()),
+        Err("drag")
+    );
+    assert_eq!(*plate.coefficients(), before);
+    // Four times the drag halves the broadside terminal speed (v_t ∝ 1/√C_D).
+    let terminal = |plate: &RigidPlate| {
+        let mut s = PlateState::default();
+        for _ in 0..600 {
+            plate.step(&mut s, 1.0 / 60.0, G, &still, true);
+        }
+        -s.velocity.y
+    };
+    let slow = terminal(&plate);
+    plate
+        .set_coefficients(AeroCoefficients {
+            drag: 4.0 * before.drag,
+            ..before
+        })
+        .unwrap();
+    let ratio = terminal(&plate) / slow;
+    assert!((ratio - 0.5).abs() < 0.02, "ratio {ratio}");
+}

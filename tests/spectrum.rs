@@ -1,8 +1,8 @@
 //! The `spectrum` module: slopes, moments, realness, periodicity, sizes, seeds.
 mod common;
 
+use bevy_windfall::spectrum::measure::{fit_slope, line_spectrum, mean_variance};
 use bevy_windfall::spectrum::{SpectrumError, fbm, fbm_pair, try_fbm};
-use common::{fit_slope, line_spectrum, mean_variance};
 
 const BETAS: [f32; 4] = [1.0, 5.0 / 3.0, 2.0, 3.0];
 const TOLERANCE: f64 = 0.1;

@@ -1,4 +1,4 @@
-//! What every example scene shares: `--frames N`, `--screenshot PATH`, a window of fixed size.
+//! What every example scene shares: `--frames N`, `--screenshot PATH`, `--window WxH`.
 #![allow(dead_code)]
 
 use std::path::PathBuf;
@@ -14,12 +14,14 @@ pub struct ExampleArgs {
     pub frames: Option<u32>,
     /// Save a screenshot here once the scene has rendered, then exit.
     pub screenshot: Option<PathBuf>,
+    /// Window size in pixels (default 1280 × 720; CI renders smaller, in software).
+    pub window: Option<(u32, u32)>,
     /// Other arguments, for the scene itself.
     pub rest: Vec<String>,
 }
 
 impl ExampleArgs {
-    /// Reads `--frames N` and `--screenshot PATH` from the command line.
+    /// Reads `--frames N`, `--screenshot PATH` and `--window WxH` from the command line.
     pub fn parse() -> Self {
         let mut args = Self::default();
         let mut it = std::env::args().skip(1);
@@ -29,6 +31,12 @@ impl ExampleArgs {
                     args.frames = it.next().and_then(|n| n.parse().ok());
                 }
                 "--screenshot" => args.screenshot = it.next().map(PathBuf::from),
+                "--window" => {
+                    args.window = it.next().and_then(|s| {
+                        let (w, h) = s.split_once('x')?;
+                        Some((w.parse().ok()?, h.parse().ok()?))
+                    });
+                }
                 _ => args.rest.push(arg),
             }
         }
@@ -40,15 +48,16 @@ impl ExampleArgs {
 /// unless `--frames` says when.
 const DEFAULT_SCREENSHOT_FRAME: u32 = 400;
 
-/// `DefaultPlugins` with a 1280×720 window titled `title`, plus the `--frames`/`--screenshot`
-/// handling.
+/// `DefaultPlugins` with a window titled `title` (1280×720 unless `--window` says), plus the
+/// `--frames`/`--screenshot` handling.
 pub fn example_app(title: &str) -> App {
     let args = ExampleArgs::parse();
+    let (width, height) = args.window.unwrap_or((1280, 720));
     let mut app = App::new();
     app.add_plugins(DefaultPlugins.set(WindowPlugin {
         primary_window: Some(Window {
             title: title.into(),
-            resolution: WindowResolution::new(1280, 720),
+            resolution: WindowResolution::new(width, height),
             ..default()
         }),
         ..default()
@@ -65,8 +74,19 @@ struct FrameCount {
     requested: bool,
 }
 
+/// Marks a screenshot request whose image has been captured (and is being saved).
 #[derive(Component)]
-struct ScreenshotDone;
+pub struct ScreenshotDone;
+
+/// Saves the primary window to `path`; the request entity gets [`ScreenshotDone`] once captured.
+pub fn take_screenshot(commands: &mut Commands, path: PathBuf) {
+    commands
+        .spawn(Screenshot::primary_window())
+        .observe(save_to_disk(path))
+        .observe(|captured: On<ScreenshotCaptured>, mut commands: Commands| {
+            commands.entity(captured.entity).insert(ScreenshotDone);
+        });
+}
 
 fn frames_and_screenshot(
     mut commands: Commands,
@@ -80,12 +100,7 @@ fn frames_and_screenshot(
         let at = args.frames.unwrap_or(DEFAULT_SCREENSHOT_FRAME);
         if count.frames >= at && !count.requested {
             count.requested = true;
-            commands
-                .spawn(Screenshot::primary_window())
-                .observe(save_to_disk(path.clone()))
-                .observe(|captured: On<ScreenshotCaptured>, mut commands: Commands| {
-                    commands.entity(captured.entity).insert(ScreenshotDone);
-                });
+            take_screenshot(&mut commands, path.clone());
         }
         if !done.is_empty() {
             info!("screenshot saved to {}", path.display());
@@ -115,29 +130,34 @@ pub fn info_text() -> impl Bundle {
 }
 
 /// A sunlit meadow: a directional light from `sun` toward the origin, ambient light and a grass
-/// plane `size` metres across at y = 0.
+/// plane `size` metres across at y = 0. Returns the light and the plane.
 pub fn meadow(
     commands: &mut Commands,
     meshes: &mut Assets<Mesh>,
     materials: &mut Assets<StandardMaterial>,
     sun: Vec3,
     size: f32,
-) {
-    commands.spawn((
-        DirectionalLight {
-            illuminance: 9_000.0,
-            ..default()
-        },
-        Transform::from_translation(sun).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
+) -> [Entity; 2] {
+    let light = commands
+        .spawn((
+            DirectionalLight {
+                illuminance: 9_000.0,
+                ..default()
+            },
+            Transform::from_translation(sun).looking_at(Vec3::ZERO, Vec3::Y),
+        ))
+        .id();
     commands.insert_resource(GlobalAmbientLight {
         brightness: 700.0,
         ..default()
     });
-    commands.spawn((
-        Mesh3d(meshes.add(Plane3d::default().mesh().size(size, size))),
-        MeshMaterial3d(materials.add(Color::srgb(0.38, 0.52, 0.28))),
-    ));
+    let ground = commands
+        .spawn((
+            Mesh3d(meshes.add(Plane3d::default().mesh().size(size, size))),
+            MeshMaterial3d(materials.add(Color::srgb(0.38, 0.52, 0.28))),
+        ))
+        .id();
+    [light, ground]
 }
 
 /// A matte material seen from both sides (leaves, cloth).

@@ -199,6 +199,16 @@ impl RigidPlate {
             check(field, value, value > 0.0, "must be finite and > 0")?;
         }
         coefficients.validate()?;
+        // Faces that can exert no force are dropped, so no NaN can reach the solver; the rest
+        // get unit normals.
+        let faces = faces
+            .into_iter()
+            .filter(|f| f.center.is_finite() && f.area.is_finite() && f.area > 0.0)
+            .filter_map(|f| {
+                let normal = f.normal.try_normalize()?;
+                Some(Face { normal, ..f })
+            })
+            .collect();
         Ok(Self {
             faces,
             mass,
@@ -225,6 +235,14 @@ impl RigidPlate {
     /// Coefficients.
     pub fn coefficients(&self) -> &AeroCoefficients {
         &self.coefficients
+    }
+
+    /// Replaces the coefficients (live tuning); a bad value is refused by name and nothing
+    /// changes.
+    pub fn set_coefficients(&mut self, coefficients: AeroCoefficients) -> Result<(), AeroError> {
+        coefficients.validate()?;
+        self.coefficients = coefficients;
+        Ok(())
     }
 
     /// Kinetic plus potential energy, J (potential measured from the origin against
@@ -279,8 +297,9 @@ impl RigidPlate {
     /// uniform wind it relaxes toward the wind without overshoot) and takes the lift explicitly,
     /// with substeps so that h × lift rate ≤ [`LIFT_STEP`]. Aerodynamic forces without wind only
     /// remove energy (drag opposes each face's motion, lift is perpendicular to it); when
-    /// `wind_is_still` is true, a substep that would add energy through rounding or the explicit
-    /// lift has its velocities scaled back so that the total energy does not grow.
+    /// `wind_is_still` is true, or the wind is the same at every face, a substep that would add
+    /// energy (in the wind's frame) through rounding or the explicit lift has its velocities
+    /// relative to the wind scaled back so that this energy does not grow.
     pub fn step(
         &self,
         s: &mut PlateState,
@@ -295,15 +314,24 @@ impl RigidPlate {
         let mut remaining = dt;
         for i in 0..MAX_SUBSTEPS {
             let rate = self.lift_rate(s, wind);
-            let h = if i + 1 == MAX_SUBSTEPS {
-                remaining
+            // The last substep takes what is left, with the lift scaled down so that it still
+            // turns v_rel by at most LIFT_STEP (a limiter that acts only on bodies whose lift
+            // rate exceeds MAX_SUBSTEPS × LIFT_STEP / dt, e.g. a 2 mm foil in water).
+            let (h, lift_scale) = if i + 1 == MAX_SUBSTEPS {
+                let h = remaining;
+                (h, (LIFT_STEP / (h * rate).max(1e-30)).min(1.0))
             } else {
-                remaining.min(LIFT_STEP / rate.max(1e-12))
+                (remaining.min(LIFT_STEP / rate.max(1e-12)), 1.0)
             };
             let previous = *s;
-            self.substep(s, h, gravity, wind);
-            if wind_is_still {
-                self.no_energy_gain(s, &previous, gravity);
+            let frame = if wind_is_still {
+                Some(Vec3::ZERO)
+            } else {
+                self.uniform_wind(s, wind)
+            };
+            self.substep(s, h, gravity, wind, lift_scale);
+            if let Some(frame) = frame {
+                self.no_energy_gain(s, &previous, gravity, frame);
             }
             remaining -= h;
             if remaining <= 0.0 {
@@ -348,7 +376,14 @@ impl RigidPlate {
         if rate.is_finite() { rate } else { f32::MAX }
     }
 
-    fn substep(&self, s: &mut PlateState, h: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
+    fn substep(
+        &self,
+        s: &mut PlateState,
+        h: f32,
+        gravity: Vec3,
+        wind: &impl Fn(Vec3) -> Vec3,
+        lift_scale: f32,
+    ) {
         let c = &self.coefficients;
         let inertia = self.world_inertia(s.rotation);
         // A (6×6, symmetric positive definite) [v'; ω'] = b.
@@ -373,7 +408,7 @@ impl RigidPlate {
             let speed = rel.length();
             let normal = s.rotation * face.normal;
             // Lift alone (explicit) and the drag coefficient K (F_D = −K v_rel).
-            let lift = face_force(rel, normal, face.area, 0.0, c.lift, c.density);
+            let lift = face_force(rel, normal, face.area, 0.0, c.lift * lift_scale, c.density);
             let k = if speed > 0.0 && speed.is_finite() {
                 let drag = face_force(rel, normal, face.area, c.drag, 0.0, c.density);
                 drag.length() / speed
@@ -417,10 +452,43 @@ impl RigidPlate {
         s.rotation = (Quat::from_scaled_axis(h * w) * s.rotation).normalize();
     }
 
-    /// Scales the velocities so the energy is that of `previous`; if even zero velocity would
-    /// leave more (the substep climbed higher than its energy allows, at an apex), the body
-    /// stays where it was, at rest.
-    fn no_energy_gain(&self, s: &mut PlateState, previous: &PlateState, gravity: Vec3) {
+    /// The wind at the faces if it is the same at all of them (to 1e-6 relative), else `None`.
+    fn uniform_wind(&self, s: &PlateState, wind: &impl Fn(Vec3) -> Vec3) -> Option<Vec3> {
+        let u = wind(s.position);
+        let tolerance = 1e-6 * u.length() + 1e-9;
+        self.faces
+            .iter()
+            .all(|f| wind(s.position + s.rotation * f.center).distance(u) <= tolerance)
+            .then_some(u)
+    }
+
+    /// In a uniform wind `frame` (still air is `frame` = 0) aerodynamic forces only remove
+    /// energy measured in the wind's frame. If a substep added some (rounding, or the explicit
+    /// lift's turn of v_rel), the velocities relative to the wind are scaled so the energy is
+    /// that of `previous`; if even zero relative velocity would leave more (the substep climbed
+    /// higher than its energy allows, at an apex), the body stays where it was, moving with the
+    /// wind.
+    fn no_energy_gain(
+        &self,
+        s: &mut PlateState,
+        previous: &PlateState,
+        gravity: Vec3,
+        frame: Vec3,
+    ) {
+        let relative = |p: &PlateState| PlateState {
+            velocity: p.velocity - frame,
+            ..*p
+        };
+        let mut rel = relative(s);
+        self.no_energy_gain_still(&mut rel, &relative(previous), gravity);
+        *s = PlateState {
+            velocity: rel.velocity + frame,
+            ..rel
+        };
+    }
+
+    /// [`Self::no_energy_gain`] in the frame where the air is still.
+    fn no_energy_gain_still(&self, s: &mut PlateState, previous: &PlateState, gravity: Vec3) {
         let before = self.energy(previous, gravity);
         let after = self.energy(s, gravity);
         if after <= before || !before.is_finite() {

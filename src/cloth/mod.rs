@@ -15,6 +15,8 @@
 
 mod constraints;
 mod descriptor;
+#[cfg(feature = "gizmos")]
+mod gizmos;
 mod mesh;
 mod noise;
 mod params;
@@ -26,6 +28,8 @@ pub use constraints::{align_to_leading_yarn, pole_edge};
 pub use descriptor::{
     DescriptorFilter, HarmonicFilter, bend_angles, total_curvature, trace_yarn, yarn_from_angles,
 };
+#[cfg(feature = "gizmos")]
+pub use gizmos::{ClothGizmos, ClothGizmosPlugin};
 pub use mesh::{cloth_mesh, write_cloth_mesh};
 pub use noise::NoiseSheet;
 pub use params::{

@@ -24,6 +24,8 @@
 //! [`FreeFallPlugin`] moves every [`FallingObject`] on the fixed timestep.
 
 mod database;
+#[cfg(feature = "gizmos")]
+mod gizmos;
 mod markov;
 mod model;
 mod motion;
@@ -34,6 +36,8 @@ mod random;
 mod regime;
 
 pub use database::{DatabaseConfig, SEGMENT_SAMPLES, Segment, TrajectoryDatabase, kmeans};
+#[cfg(feature = "gizmos")]
+pub use gizmos::{FallGizmos, FallGizmosPlugin, FallTrail, motion_color};
 pub use markov::{BoundedChain, MarkovChain, MarkovError, motion_class_count};
 pub use model::FallModel;
 pub use motion::{

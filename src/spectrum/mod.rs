@@ -25,6 +25,7 @@
 mod amplitude;
 mod fft;
 mod grid;
+pub mod measure;
 mod normal;
 mod sample;
 mod synth;

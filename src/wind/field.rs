@@ -168,6 +168,14 @@ impl WindField {
         }
     }
 
+    /// Takes over `old`'s clock (time, time scale, pause), so a rebuilt field continues where the
+    /// old one was.
+    pub fn continue_clock_of(&mut self, old: &WindField) {
+        self.time = old.time;
+        self.time_scale = old.time_scale;
+        self.paused = old.paused;
+    }
+
     /// Wind velocity at `position` at the field's own clock.
     pub fn velocity(&self, position: Vec3) -> Vec3 {
         self.sample(position, self.time)
@@ -252,7 +260,8 @@ fn grid_dims(config: &WindConfig) -> Vec<usize> {
 }
 
 /// [`WindConfig::validate`] plus the upper bounds that keep every sample finite.
-fn validate_extra(config: &WindConfig) -> Result<(), WindError> {
+/// Every check [`WindField::new`] makes before synthesising.
+pub(super) fn validate_extra(config: &WindConfig) -> Result<(), WindError> {
     config.validate()?;
     if config.reference_speed > MAX_REFERENCE_SPEED {
         return Err(WindError::Invalid {

@@ -19,9 +19,11 @@ mod field;
 mod gizmos;
 mod plugin;
 pub mod profile;
+mod rebuild;
 
 pub use config::{MAX_NODES, SpatialMode, TemporalMode, WindConfig, WindError};
 pub use field::{MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, WindField};
 #[cfg(feature = "gizmos")]
 pub use gizmos::{WindGizmos, WindGizmosPlugin, speed_class_color};
 pub use plugin::{WindPlugin, advance_wind_clock};
+pub use rebuild::{WindRebuild, WindRebuilt, finish_wind_rebuild};

@@ -1,14 +1,15 @@
 //! ECS glue: the [`WindPlugin`] and the system that advances the wind clock.
 
-use bevy::app::{App, FixedUpdate, Plugin};
+use bevy::app::{App, FixedUpdate, Plugin, PreUpdate};
 use bevy::ecs::prelude::*;
 use bevy::time::{Fixed, Time};
 
-use super::{WindConfig, WindField};
+use super::{WindConfig, WindField, WindRebuilt, finish_wind_rebuild};
 use crate::WindfallSystems;
 
 /// Adds wind to an app: inserts a [`WindField`] built from `config` (unless the app already has
-/// one) and advances its clock in [`FixedUpdate`], in [`WindfallSystems::Wind`].
+/// one) and advances its clock in [`FixedUpdate`], in [`WindfallSystems::Wind`]. Swaps in a
+/// field rebuilt in the background ([`WindRebuild`](super::WindRebuild)) in [`PreUpdate`].
 ///
 /// With `config: None` no field is inserted; insert your own with
 /// `app.insert_resource(WindField::new(config)?)`, which reports a bad configuration as a
@@ -42,12 +43,15 @@ impl Plugin for WindPlugin {
     /// field yourself with [`WindField::new`].
     fn build(&self, app: &mut App) {
         crate::configure_sets(app);
-        app.register_type::<WindConfig>().add_systems(
-            FixedUpdate,
-            advance_wind_clock
-                .run_if(resource_exists::<WindField>)
-                .in_set(WindfallSystems::Wind),
-        );
+        app.register_type::<WindConfig>()
+            .add_message::<WindRebuilt>()
+            .add_systems(PreUpdate, finish_wind_rebuild)
+            .add_systems(
+                FixedUpdate,
+                advance_wind_clock
+                    .run_if(resource_exists::<WindField>)
+                    .in_set(WindfallSystems::Wind),
+            );
         if let Some(config) = &self.config
             && !app.world().contains_resource::<WindField>()
         {

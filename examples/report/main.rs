@@ -1,0 +1,127 @@
+//! The error-against-run-time report: every numerical method of the crate, measured in this
+//! run, written as Markdown with SVG plots, plus a stability table of the stiff and extreme
+//! cases the crate claims to handle.
+//!
+//! `cargo run --release --example report -- [DIR] [--quick]` writes `DIR/report.md` (default
+//! `target/report`) and its plots, and prints the Markdown. `--quick` runs fewer repetitions
+//! (for CI in a debug build; its timings mean little).
+
+mod aero;
+mod cloth;
+mod costs;
+mod freefall;
+mod plot;
+mod spectrum;
+mod stability;
+mod wind;
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use plot::Plot;
+
+/// The report being written.
+pub struct Report {
+    dir: PathBuf,
+    markdown: String,
+    /// Fewer repetitions, for a smoke run.
+    pub quick: bool,
+}
+
+impl Report {
+    /// A heading and a paragraph.
+    pub fn section(&mut self, title: &str, text: &str) {
+        let _ = write!(self.markdown, "## {title}\n\n");
+        if !text.is_empty() {
+            let _ = write!(self.markdown, "{text}\n\n");
+        }
+    }
+
+    /// A paragraph.
+    pub fn markdown_line(&mut self, text: &str) {
+        let _ = write!(self.markdown, "{text}\n\n");
+    }
+
+    /// A Markdown table.
+    pub fn table(&mut self, header: &[&str], rows: &[Vec<String>]) {
+        let line = |cells: &[String]| format!("| {} |\n", cells.join(" | "));
+        let head: Vec<String> = header.iter().map(|s| s.to_string()).collect();
+        self.markdown += &line(&head);
+        self.markdown += &line(&vec!["---".to_string(); header.len()]);
+        for row in rows {
+            self.markdown += &line(row);
+        }
+        self.markdown += "\n";
+    }
+
+    /// Draws `plot` into `DIR/name.svg` and links it.
+    pub fn figure(&mut self, name: &str, plot: &Plot) {
+        let file = format!("{name}.svg");
+        match plot::draw(&self.dir.join(&file), plot) {
+            Ok(()) => {
+                let _ = write!(self.markdown, "![{}]({file})\n\n", plot.title);
+            }
+            Err(e) => eprintln!("plot {file}: {e}"),
+        }
+    }
+}
+
+/// `x` in scientific notation, or what went wrong with it.
+pub fn sci(x: f64) -> String {
+    if x.is_nan() {
+        "NaN".into()
+    } else if x.is_infinite() {
+        "inf".into()
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
+fn main() {
+    let mut dir = PathBuf::from("target/report");
+    let mut quick = false;
+    for arg in std::env::args().skip(1) {
+        match arg.as_str() {
+            "--quick" => quick = true,
+            other => dir = other.into(),
+        }
+    }
+    std::fs::create_dir_all(&dir).expect("cannot create the report folder");
+    let mut report = Report {
+        dir: dir.clone(),
+        markdown: String::new(),
+        quick,
+    };
+    let build = if cfg!(debug_assertions) {
+        "debug"
+    } else {
+        "release"
+    };
+    let _ = write!(
+        report.markdown,
+        "# bevy_windfall: error against run time\n\nMeasured in one run of `report` ({build} \
+         build, {} threads available). Every number and plot below comes from this run.\n\n",
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    );
+    spectrum::report(&mut report);
+    wind::report(&mut report);
+    freefall::report(&mut report);
+    cloth::report(&mut report);
+    aero::report(&mut report);
+    costs::report(&mut report);
+    stability::report(&mut report);
+    let path = dir.join("report.md");
+    std::fs::write(&path, &report.markdown).expect("cannot write report.md");
+    println!("{}", report.markdown);
+    eprintln!("report written to {}", path.display());
+}
+
+/// Mean wall time of `f`, s, over `repeats` calls (at least one).
+pub fn seconds_per(repeats: usize, mut f: impl FnMut()) -> f64 {
+    let repeats = repeats.max(1);
+    let start = std::time::Instant::now();
+    for _ in 0..repeats {
+        f();
+    }
+    start.elapsed().as_secs_f64() / repeats as f64
+}

@@ -1,0 +1,269 @@
+//! A flag on a pole, a banner, or a curtain at a window, shaped by P-type Fourier-descriptor
+//! yarns driven by 1/f^β noise and the shared wind field. V cycles them, F switches frozen and
+//! non-frozen wind.
+
+use bevy::asset::RenderAssetUsages;
+use bevy::image::Image;
+use bevy::prelude::*;
+use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
+use bevy_windfall::cloth::ClothWindModel;
+use bevy_windfall::prelude::*;
+
+use super::{Scene, SceneInfo, place_camera};
+
+/// What hangs in the wind.
+#[derive(Resource, Clone, Copy, PartialEq, Eq, Debug, Default)]
+pub enum Fabric {
+    #[default]
+    Flag,
+    Banner,
+    Curtain,
+}
+
+impl Fabric {
+    /// Table 1 row for this fabric in a gentle breeze.
+    pub fn preset(self, non_frozen: bool) -> ClothPreset {
+        match (self, non_frozen) {
+            (Self::Flag, false) => ClothPreset::FlagGentleFrozen,
+            (Self::Flag, true) => ClothPreset::FlagGentleNonFrozen,
+            (Self::Banner, false) => ClothPreset::BannerGentleFrozen,
+            (Self::Banner, true) => ClothPreset::BannerGentleNonFrozen,
+            (Self::Curtain, false) => ClothPreset::CurtainGentleFrozen,
+            (Self::Curtain, true) => ClothPreset::CurtainGentleNonFrozen,
+        }
+    }
+
+    fn next(self) -> Self {
+        match self {
+            Self::Flag => Self::Banner,
+            Self::Banner => Self::Curtain,
+            Self::Curtain => Self::Flag,
+        }
+    }
+}
+
+/// The cloth entity.
+#[derive(Component)]
+pub struct Hanging;
+
+#[derive(Resource)]
+struct Textures([Handle<Image>; 3]);
+
+pub fn plugin(app: &mut App) {
+    app.init_resource::<Fabric>()
+        .add_systems(Startup, paint_textures)
+        .add_systems(OnEnter(Scene::Flag), setup)
+        .add_systems(
+            Update,
+            (
+                keys,
+                apply_fabric.run_if(resource_changed::<Fabric>),
+                show_info,
+            )
+                .chain()
+                .run_if(in_state(Scene::Flag)),
+        );
+}
+
+/// A texture from a function of (u, v) in [0, 1]².
+fn paint(images: &mut Assets<Image>, f: impl Fn(f32, f32) -> [u8; 3]) -> Handle<Image> {
+    let (w, h) = (256u32, 160u32);
+    let mut data = Vec::with_capacity((w * h * 4) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            let [r, g, b] = f(x as f32 / w as f32, y as f32 / h as f32);
+            data.extend([r, g, b, 255]);
+        }
+    }
+    let size = Extent3d {
+        width: w,
+        height: h,
+        depth_or_array_layers: 1,
+    };
+    let format = TextureFormat::Rgba8UnormSrgb;
+    let usage = RenderAssetUsages::RENDER_WORLD;
+    images.add(Image::new(size, TextureDimension::D2, data, format, usage))
+}
+
+fn paint_textures(mut commands: Commands, mut images: ResMut<Assets<Image>>) {
+    // A tricolour with a golden disk; pennant stripes; checked linen.
+    let flag = paint(&mut images, |u, v| {
+        if ((u - 0.5) * 1.6).hypot(v - 0.5) < 0.17 {
+            [240, 190, 40]
+        } else if v < 1.0 / 3.0 {
+            [20, 60, 150]
+        } else if v < 2.0 / 3.0 {
+            [245, 245, 240]
+        } else {
+            [190, 30, 40]
+        }
+    });
+    let banner = paint(&mut images, |u, v| {
+        if ((v * 6.0) as u32).is_multiple_of(2) {
+            [200, 40, 40]
+        } else if u < 0.1 {
+            [30, 30, 30]
+        } else {
+            [250, 220, 80]
+        }
+    });
+    let curtain = paint(&mut images, |u, v| {
+        if ((u * 12.0) as u32 + (v * 8.0) as u32).is_multiple_of(2) {
+            [235, 230, 215]
+        } else {
+            [215, 225, 235]
+        }
+    });
+    commands.insert_resource(Textures([flag, banner, curtain]));
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut camera: Single<&mut Transform, With<Camera3d>>,
+    mut wind: ResMut<WindField>,
+    mut fabric: ResMut<Fabric>,
+) {
+    let here = DespawnOnExit(Scene::Flag);
+    place_camera(
+        &mut camera,
+        Vec3::new(-1.0, 4.6, 7.5),
+        Vec3::new(1.2, 4.4, 0.0),
+    );
+    let _ = wind.set_reference_speed(4.5);
+    commands.insert_resource(ClearColor(Color::srgb(0.62, 0.78, 0.92)));
+    commands.insert_resource(GlobalAmbientLight {
+        brightness: 600.0,
+        ..default()
+    });
+    commands.spawn((
+        DirectionalLight {
+            illuminance: 10_000.0,
+            ..default()
+        },
+        Transform::from_xyz(-4.0, 8.0, 6.0).looking_at(Vec3::new(1.0, 4.0, 0.0), Vec3::Y),
+        here.clone(),
+    ));
+    commands.spawn((
+        Mesh3d(meshes.add(Plane3d::default().mesh().size(60.0, 60.0))),
+        MeshMaterial3d(materials.add(Color::srgb(0.36, 0.55, 0.32))),
+        here.clone(),
+    ));
+    let metal = materials.add(Color::srgb(0.75, 0.75, 0.78));
+    // Pole for the flag and the banner; a curtain rod behind and to the side.
+    commands.spawn((
+        Mesh3d(meshes.add(Cylinder::new(0.05, 6.0))),
+        MeshMaterial3d(metal.clone()),
+        Transform::from_xyz(0.0, 3.0, 0.0),
+        here.clone(),
+    ));
+    commands.spawn((
+        Mesh3d(meshes.add(Cuboid::new(2.2, 0.06, 0.06))),
+        MeshMaterial3d(metal),
+        Transform::from_xyz(-2.6, 4.9, -2.5),
+        here.clone(),
+    ));
+    // The cloth's mesh and shape come from `apply_fabric`.
+    commands.spawn((
+        Hanging,
+        MeshMaterial3d(materials.add(StandardMaterial {
+            perceptual_roughness: 0.8,
+            double_sided: true,
+            cull_mode: None,
+            ..default()
+        })),
+        here,
+    ));
+    fabric.set_changed();
+}
+
+fn grid(rows: usize, columns: usize, width: f32, height: f32) -> ClothGrid {
+    ClothGrid {
+        rows,
+        columns,
+        width,
+        height,
+    }
+}
+
+/// The cloth for the current [`Fabric`]: its Table 1 preset, grid, edge and place.
+pub fn cloth_for(fabric: Fabric, non_frozen: bool) -> (Cloth, Transform) {
+    let mut params = fabric.preset(non_frozen).params();
+    let pole = Transform::from_xyz(0.05, 5.95, 0.0);
+    let (grid, attachment, transform) = match fabric {
+        Fabric::Flag => (grid(28, 42, 2.1, 1.4), ClothAttachment::Pole, pole),
+        Fabric::Banner => {
+            params.bow = 0.12;
+            (grid(14, 64, 3.6, 0.6), ClothAttachment::Pole, pole)
+        }
+        // The rod runs along local +X; the curtain billows along local +Z, into the room.
+        Fabric::Curtain => (
+            grid(30, 36, 2.0, 2.0),
+            ClothAttachment::Rod,
+            Transform::from_xyz(-3.6, 4.88, -2.5),
+        ),
+    };
+    let cloth = Cloth {
+        grid,
+        params,
+        attachment,
+        follow_wind: true,
+    };
+    (cloth, transform)
+}
+
+fn keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    mut fabric: ResMut<Fabric>,
+    mut cloth: Single<&mut Cloth, With<Hanging>>,
+) {
+    if keys.just_pressed(KeyCode::KeyV) {
+        *fabric = fabric.next();
+    }
+    if keys.just_pressed(KeyCode::KeyF) {
+        let non_frozen = !matches!(cloth.params.model, ClothWindModel::NonFrozen { .. });
+        cloth.params.model = fabric.preset(non_frozen).params().model;
+    }
+}
+
+fn apply_fabric(
+    mut commands: Commands,
+    fabric: Res<Fabric>,
+    textures: Res<Textures>,
+    hanging: Single<(Entity, &MeshMaterial3d<StandardMaterial>), With<Hanging>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    let (entity, material) = *hanging;
+    let (cloth, transform) = cloth_for(*fabric, false);
+    if let Some(mut m) = materials.get_mut(&material.0) {
+        m.base_color_texture = Some(textures.0[*fabric as usize].clone());
+    }
+    commands.entity(entity).insert((cloth, transform));
+}
+
+fn show_info(
+    wind: Res<WindField>,
+    fabric: Res<Fabric>,
+    hanging: Query<(&Cloth, &ClothState, &GlobalTransform), With<Hanging>>,
+    mut info: ResMut<SceneInfo>,
+) {
+    let Ok((cloth, state, at)) = hanging.single() else {
+        return;
+    };
+    let p = &cloth.params;
+    let model = match p.model {
+        ClothWindModel::Frozen => "frozen",
+        ClothWindModel::NonFrozen { .. } => "non-frozen",
+    };
+    info.0 = format!(
+        "{:?} ({model})   wind here {:.1} m/s -> |v| = {:.1} steps/frame   theta = {:.1}   \
+         beta = {:.2}   swirl |u| = {}\nV flag/banner/curtain   F frozen/non-frozen",
+        *fabric,
+        wind.velocity(at.translation()).length(),
+        state.wind_speed,
+        p.amplitude,
+        p.beta,
+        p.swirl,
+    );
+}

@@ -1,0 +1,237 @@
+//! The showcase: autumn leaves (procedural and physical), the paper's coin falling in water, and
+//! a flag, banner or curtain, in one app sharing one wind field. With `--features egui` a panel
+//! tunes the wind, the falling objects, the cloth and the aero bodies live.
+//!
+//! Keys: 1 leaves, 2 coin, 3 flag · G gizmos (off, wind, paths and yarns, all) · ↑/↓ wind speed ·
+//! ←/→ wind direction · in the flag scene V flag/banner/curtain, F frozen/non-frozen.
+//!
+//! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag] [--frames N]
+//! [--screenshot PATH] [--tour DIR]`
+//!
+//! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits.
+
+mod coin;
+#[path = "../common/mod.rs"]
+mod common;
+mod flag;
+mod leaves;
+#[cfg(feature = "egui")]
+mod panel;
+
+use std::path::PathBuf;
+
+use bevy::diagnostic::{DiagnosticsStore, FrameTimeDiagnosticsPlugin};
+use bevy::prelude::*;
+use bevy_windfall::cloth::ClothGizmos;
+use bevy_windfall::freefall::FallGizmos;
+use bevy_windfall::prelude::*;
+use bevy_windfall::wind::WindGizmos;
+
+/// The scenes, one at a time; each despawns its entities when left.
+#[derive(States, Default, Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum Scene {
+    /// Autumn leaves from a tree.
+    #[default]
+    Leaves,
+    /// The paper's coin in a water tank.
+    Coin,
+    /// A flag, banner or curtain.
+    Flag,
+}
+
+impl Scene {
+    const ALL: [Self; 3] = [Self::Leaves, Self::Coin, Self::Flag];
+
+    fn name(self) -> &'static str {
+        match self {
+            Self::Leaves => "leaves",
+            Self::Coin => "coin",
+            Self::Flag => "flag",
+        }
+    }
+}
+
+/// Lines a scene shows under the common header.
+#[derive(Resource, Default)]
+pub struct SceneInfo(pub String);
+
+/// A falling object the panel edits and reports on (the coin, one leaf).
+#[derive(Component)]
+pub struct Featured;
+
+#[derive(Component)]
+struct Hud;
+
+/// `--tour DIR`: where the screenshots go and how far the tour is. Software renderers show
+/// black frames while shaders compile: the first scene waits 300 frames, later ones (most
+/// pipelines ready) 150.
+#[derive(Resource)]
+struct Tour {
+    dir: PathBuf,
+    next: usize,
+    frames_in_scene: u32,
+}
+
+fn main() {
+    let mut app = common::example_app("bevy_windfall: showcase");
+    let args = app.world().resource::<common::ExampleArgs>().clone();
+    let option = |name: &str| {
+        args.rest
+            .windows(2)
+            .find(|w| w[0] == name)
+            .map(|w| w[1].clone())
+    };
+    let start = option("--scene")
+        .and_then(|s| Scene::ALL.into_iter().find(|scene| scene.name() == s))
+        .unwrap_or_default();
+    app.add_plugins(WindfallPlugins.set(WindPlugin::new(WindConfig {
+        reference_speed: 2.5,
+        grid: [96, 96],
+        temporal: TemporalMode::Evolving {
+            samples: 16,
+            period: 20.0,
+        },
+        seed: 5,
+        ..default()
+    })))
+    .add_plugins(FrameTimeDiagnosticsPlugin::default())
+    .insert_state(start)
+    .insert_resource(WindGizmos {
+        enabled: false,
+        center: Vec2::new(2.0, 0.0),
+        half_extent: Vec2::new(10.0, 6.0),
+        height: 1.5,
+        ..default()
+    })
+    .init_resource::<SceneInfo>()
+    .add_plugins((leaves::plugin, coin::plugin, flag::plugin))
+    .add_systems(Update, (switch_scene, toggle_gizmos, steer_wind, show_hud));
+    if let Some(dir) = option("--tour") {
+        std::fs::create_dir_all(&dir).expect("--tour: cannot create the folder");
+        app.insert_resource(Tour {
+            dir: dir.into(),
+            next: 0,
+            frames_in_scene: 0,
+        })
+        .insert_state(Scene::ALL[0])
+        .add_systems(Last, tour);
+    }
+    #[cfg(feature = "egui")]
+    app.add_plugins(panel::plugin);
+    // The camera and the header text outlive the scenes; each scene places the camera when it
+    // is entered, which for the first scene happens before `Startup`.
+    app.world_mut().spawn(Camera3d::default());
+    app.world_mut().spawn((Hud, common::info_text()));
+    app.run();
+}
+
+/// Points the shared camera for a scene.
+pub fn place_camera(camera: &mut Transform, eye: Vec3, target: Vec3) {
+    *camera = Transform::from_translation(eye).looking_at(target, Vec3::Y);
+}
+
+fn switch_scene(keys: Res<ButtonInput<KeyCode>>, mut next: ResMut<NextState<Scene>>) {
+    for (key, scene) in [
+        (KeyCode::Digit1, Scene::Leaves),
+        (KeyCode::Digit2, Scene::Coin),
+        (KeyCode::Digit3, Scene::Flag),
+    ] {
+        if keys.just_pressed(key) {
+            next.set(scene);
+        }
+    }
+}
+
+/// G cycles: off → wind arrows → falling paths and cloth yarns → everything.
+fn toggle_gizmos(
+    keys: Res<ButtonInput<KeyCode>>,
+    mut wind: ResMut<WindGizmos>,
+    mut falls: ResMut<FallGizmos>,
+    mut cloth: ResMut<ClothGizmos>,
+) {
+    if keys.just_pressed(KeyCode::KeyG) {
+        let level = u8::from(wind.enabled) + 2 * u8::from(falls.enabled);
+        let next = (level + 1) % 4;
+        wind.enabled = next & 1 != 0;
+        falls.enabled = next & 2 != 0;
+        cloth.enabled = falls.enabled;
+    }
+}
+
+fn steer_wind(keys: Res<ButtonInput<KeyCode>>, mut wind: ResMut<WindField>, time: Res<Time>) {
+    let dt = time.delta_secs();
+    let speed = wind.config().reference_speed;
+    let change = if keys.pressed(KeyCode::ArrowUp) {
+        3.0 * dt
+    } else if keys.pressed(KeyCode::ArrowDown) {
+        -3.0 * dt
+    } else {
+        0.0
+    };
+    if change != 0.0 {
+        let _ = wind.set_reference_speed((speed + change).clamp(0.0, 70.0));
+    }
+    let turn = if keys.pressed(KeyCode::ArrowLeft) {
+        dt
+    } else if keys.pressed(KeyCode::ArrowRight) {
+        -dt
+    } else {
+        0.0
+    };
+    if turn != 0.0 {
+        let d = wind.config().direction;
+        let _ = wind.set_direction(Vec2::from_angle(turn).rotate(d));
+    }
+}
+
+fn show_hud(
+    scene: Res<State<Scene>>,
+    info: Res<SceneInfo>,
+    wind: Res<WindField>,
+    diagnostics: Res<DiagnosticsStore>,
+    mut hud: Single<&mut Text, With<Hud>>,
+) {
+    let frame_ms = diagnostics
+        .get(&FrameTimeDiagnosticsPlugin::FRAME_TIME)
+        .and_then(|d| d.smoothed())
+        .unwrap_or(0.0);
+    hud.0 = format!(
+        "{:?}   frame {frame_ms:.1} ms   wind {:.1} m/s at 10 m\n\
+         1 leaves  2 coin  3 flag   G gizmos   Up/Down speed   Left/Right direction\n{}",
+        scene.get(),
+        wind.config().reference_speed,
+        info.0
+    );
+}
+
+/// Saves each scene once it has rendered, then exits.
+fn tour(
+    mut commands: Commands,
+    mut tour: ResMut<Tour>,
+    done: Query<Entity, With<common::ScreenshotDone>>,
+    mut next: ResMut<NextState<Scene>>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    tour.frames_in_scene += 1;
+    // The first scene waits for every shader; later ones only for their own new pipelines.
+    let wait = if tour.next == 0 { 300 } else { 150 };
+    if tour.frames_in_scene.is_multiple_of(50) {
+        info!("tour: scene {}, frame {}", tour.next, tour.frames_in_scene);
+    }
+    if tour.frames_in_scene == wait {
+        let scene = Scene::ALL[tour.next];
+        let path = tour.dir.join(format!("showcase_{}.png", scene.name()));
+        common::take_screenshot(&mut commands, path);
+    }
+    for entity in &done {
+        commands.entity(entity).despawn();
+        tour.next += 1;
+        tour.frames_in_scene = 0;
+        match Scene::ALL.get(tour.next) {
+            Some(&scene) => next.set(scene),
+            None => {
+                exit.write(AppExit::Success);
+            }
+        }
+    }
+}

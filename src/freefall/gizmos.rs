@@ -1,0 +1,92 @@
+//! Debug drawing of falls (feature `gizmos`): each falling object's recent path, coloured by
+//! its primitive motion.
+
+use std::collections::VecDeque;
+
+use bevy::app::{App, Plugin, PostUpdate};
+use bevy::color::Color;
+use bevy::ecs::prelude::*;
+use bevy::gizmos::gizmos::Gizmos;
+use bevy::math::Vec3;
+use bevy::transform::TransformSystems;
+use bevy::transform::components::GlobalTransform;
+
+use super::{FallState, FallingObject, PrimitiveMotion};
+
+/// Draws falling objects' trails while [`FallGizmos::enabled`]. Costs nothing while disabled.
+pub struct FallGizmosPlugin;
+
+impl Plugin for FallGizmosPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<FallGizmos>().add_systems(
+            PostUpdate,
+            draw_fall_paths
+                .after(TransformSystems::Propagate)
+                .run_if(|g: Res<FallGizmos>| g.enabled),
+        );
+    }
+}
+
+/// How [`FallGizmosPlugin`] draws.
+#[derive(Resource, Clone, Debug)]
+pub struct FallGizmos {
+    /// Draw at all (off by default).
+    pub enabled: bool,
+    /// Frames of path kept per object.
+    pub trail_frames: usize,
+    /// Draw at most this many objects' trails (the first ones found).
+    pub max_objects: usize,
+}
+
+impl Default for FallGizmos {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            trail_frames: 90,
+            max_objects: 200,
+        }
+    }
+}
+
+/// The recent positions of a falling object, kept while its path is drawn.
+#[derive(Component, Default, Debug)]
+pub struct FallTrail(VecDeque<Vec3>);
+
+/// A colour per primitive motion (L1..L6), for paths and panels.
+pub fn motion_color(motion: PrimitiveMotion) -> Color {
+    match motion {
+        PrimitiveMotion::SteadyDescent => Color::srgb(0.2, 0.2, 0.9),
+        PrimitiveMotion::Fluttering => Color::srgb(0.1, 0.7, 0.2),
+        PrimitiveMotion::Chaotic => Color::srgb(0.9, 0.5, 0.0),
+        PrimitiveMotion::Tumbling => Color::srgb(0.85, 0.1, 0.1),
+        PrimitiveMotion::Spiral => Color::srgb(0.6, 0.1, 0.8),
+        PrimitiveMotion::Helix => Color::srgb(0.0, 0.6, 0.7),
+    }
+}
+
+fn draw_fall_paths(
+    mut commands: Commands,
+    config: Res<FallGizmos>,
+    mut objects: Query<
+        (Entity, &GlobalTransform, &FallState, Option<&mut FallTrail>),
+        With<FallingObject>,
+    >,
+    mut gizmos: Gizmos,
+) {
+    for (entity, at, state, trail) in objects.iter_mut().take(config.max_objects) {
+        let Some(mut trail) = trail else {
+            commands.entity(entity).insert(FallTrail::default());
+            continue;
+        };
+        if state.landed() {
+            trail.0.clear();
+            continue;
+        }
+        trail.0.push_back(at.translation());
+        while trail.0.len() > config.trail_frames.max(2) {
+            trail.0.pop_front();
+        }
+        let color = state.motion().map_or(Color::WHITE, motion_color);
+        gizmos.linestrip(trail.0.iter().copied(), color);
+    }
+}
