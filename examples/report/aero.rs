@@ -90,7 +90,11 @@ pub fn report(r: &mut Report) {
             points.push((micros / f64::from(dt), path));
             rows.push(vec![
                 name.into(),
-                format!("{dt:.4}"),
+                if dt < 0.05 {
+                    format!("1/{:.0}", 1.0 / dt)
+                } else {
+                    format!("{dt}")
+                },
                 sci(speed_error),
                 sci(path),
                 sci(f64::from(rise)),
