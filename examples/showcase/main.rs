@@ -5,10 +5,11 @@
 //! Keys: 1 leaves, 2 coin, 3 flag · G gizmos (off, wind, paths and yarns, all) · ↑/↓ wind speed ·
 //! ←/→ wind direction · in the flag scene V flag/banner/curtain, F frozen/non-frozen.
 //!
-//! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag] [--frames N]
-//! [--screenshot PATH] [--tour DIR]`
+//! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag] [--gizmos]
+//! [--frames N] [--screenshot PATH] [--tour DIR]`
 //!
-//! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits.
+//! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits;
+//! `--gizmos` starts with the falling paths and cloth yarns drawn.
 
 mod coin;
 #[path = "../common/mod.rs"]
@@ -101,6 +102,14 @@ fn main() {
         center: Vec2::new(2.0, 0.0),
         half_extent: Vec2::new(10.0, 6.0),
         height: 1.5,
+        ..default()
+    })
+    .insert_resource(FallGizmos {
+        enabled: args.rest.iter().any(|a| a == "--gizmos"),
+        ..default()
+    })
+    .insert_resource(ClothGizmos {
+        enabled: args.rest.iter().any(|a| a == "--gizmos"),
         ..default()
     })
     .init_resource::<SceneInfo>()

@@ -4,7 +4,10 @@
 use bevy::app::{App, Plugin, PostUpdate};
 use bevy::color::Color;
 use bevy::ecs::prelude::*;
+use bevy::gizmos::AppGizmoBuilder;
+use bevy::gizmos::config::{GizmoConfig, GizmoConfigGroup};
 use bevy::gizmos::gizmos::Gizmos;
+use bevy::reflect::Reflect;
 use bevy::transform::TransformSystems;
 use bevy::transform::components::GlobalTransform;
 
@@ -15,6 +18,12 @@ pub struct ClothGizmosPlugin;
 
 impl Plugin for ClothGizmosPlugin {
     fn build(&self, app: &mut App) {
+        // The yarns lie on the cloth's surface: drawn slightly in front so it does not hide them.
+        let config = GizmoConfig {
+            depth_bias: -0.01,
+            ..Default::default()
+        };
+        app.insert_gizmo_config(YarnGizmos, config);
         app.init_resource::<ClothGizmos>().add_systems(
             PostUpdate,
             draw_yarns
@@ -23,6 +32,10 @@ impl Plugin for ClothGizmosPlugin {
         );
     }
 }
+
+/// The gizmo group of the yarns (its own depth bias).
+#[derive(Default, Reflect, GizmoConfigGroup)]
+pub struct YarnGizmos;
 
 /// How [`ClothGizmosPlugin`] draws.
 #[derive(Resource, Clone, Debug)]
@@ -48,7 +61,7 @@ impl Default for ClothGizmos {
 fn draw_yarns(
     config: Res<ClothGizmos>,
     cloths: Query<(&ClothState, &GlobalTransform), With<Cloth>>,
-    mut gizmos: Gizmos,
+    mut gizmos: Gizmos<YarnGizmos>,
 ) {
     for (state, at) in &cloths {
         let columns = state.sim.grid().columns;

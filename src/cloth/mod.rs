@@ -29,7 +29,7 @@ pub use descriptor::{
     DescriptorFilter, HarmonicFilter, bend_angles, total_curvature, trace_yarn, yarn_from_angles,
 };
 #[cfg(feature = "gizmos")]
-pub use gizmos::{ClothGizmos, ClothGizmosPlugin};
+pub use gizmos::{ClothGizmos, ClothGizmosPlugin, YarnGizmos};
 pub use mesh::{cloth_mesh, write_cloth_mesh};
 pub use noise::NoiseSheet;
 pub use params::{

@@ -1,5 +1,5 @@
-//! Debug drawing of falls (feature `gizmos`): each falling object's recent path, coloured by
-//! its primitive motion.
+//! Debug drawing of falls (feature `gizmos`): each falling object's recent simulated path
+//! (one fixed step ahead of the shown, smoothed pose), coloured by its primitive motion.
 
 use std::collections::VecDeque;
 
@@ -8,8 +8,6 @@ use bevy::color::Color;
 use bevy::ecs::prelude::*;
 use bevy::gizmos::gizmos::Gizmos;
 use bevy::math::Vec3;
-use bevy::transform::TransformSystems;
-use bevy::transform::components::GlobalTransform;
 
 use super::{FallState, FallingObject, PrimitiveMotion};
 
@@ -20,9 +18,7 @@ impl Plugin for FallGizmosPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<FallGizmos>().add_systems(
             PostUpdate,
-            draw_fall_paths
-                .after(TransformSystems::Propagate)
-                .run_if(|g: Res<FallGizmos>| g.enabled),
+            draw_fall_paths.run_if(|g: Res<FallGizmos>| g.enabled),
         );
     }
 }
@@ -43,14 +39,18 @@ impl Default for FallGizmos {
         Self {
             enabled: false,
             trail_frames: 90,
-            max_objects: 200,
+            max_objects: 60,
         }
     }
 }
 
-/// The recent positions of a falling object, kept while its path is drawn.
+/// The recent positions of a falling object, kept while its path is drawn, and the fall time of
+/// the last one (a smaller time means a new fall: the trail starts afresh).
 #[derive(Component, Default, Debug)]
-pub struct FallTrail(VecDeque<Vec3>);
+pub struct FallTrail {
+    points: VecDeque<Vec3>,
+    time: f32,
+}
 
 /// A colour per primitive motion (L1..L6), for paths and panels.
 pub fn motion_color(motion: PrimitiveMotion) -> Color {
@@ -67,26 +67,27 @@ pub fn motion_color(motion: PrimitiveMotion) -> Color {
 fn draw_fall_paths(
     mut commands: Commands,
     config: Res<FallGizmos>,
-    mut objects: Query<
-        (Entity, &GlobalTransform, &FallState, Option<&mut FallTrail>),
-        With<FallingObject>,
-    >,
+    mut objects: Query<(Entity, &FallState, Option<&mut FallTrail>), With<FallingObject>>,
     mut gizmos: Gizmos,
 ) {
-    for (entity, at, state, trail) in objects.iter_mut().take(config.max_objects) {
+    for (entity, state, trail) in objects.iter_mut().take(config.max_objects) {
         let Some(mut trail) = trail else {
             commands.entity(entity).insert(FallTrail::default());
             continue;
         };
-        if state.landed() {
-            trail.0.clear();
+        let Some(path) = state.path().filter(|p| !p.landed()) else {
+            trail.points.clear();
             continue;
+        };
+        if path.time() < trail.time {
+            trail.points.clear();
         }
-        trail.0.push_back(at.translation());
-        while trail.0.len() > config.trail_frames.max(2) {
-            trail.0.pop_front();
+        trail.time = path.time();
+        trail.points.push_back(path.position());
+        while trail.points.len() > config.trail_frames.max(2) {
+            trail.points.pop_front();
         }
         let color = state.motion().map_or(Color::WHITE, motion_color);
-        gizmos.linestrip(trail.0.iter().copied(), color);
+        gizmos.linestrip(trail.points.iter().copied(), color);
     }
 }
