@@ -2,15 +2,19 @@
 #![allow(dead_code)]
 
 use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use bevy::prelude::*;
+use bevy::render::render_resource::PipelineCache;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
+use bevy::render::{Render, RenderApp, RenderSystems};
 use bevy::window::WindowResolution;
 
 /// Command-line options of the example scenes.
 #[derive(Resource, Clone, Debug, Default)]
 pub struct ExampleArgs {
-    /// Run this many frames, then exit.
+    /// Run this many frames, then exit; with a screenshot, take it after at least this many.
     pub frames: Option<u32>,
     /// Save a screenshot here once the scene has rendered, then exit.
     pub screenshot: Option<PathBuf>,
@@ -44,9 +48,50 @@ impl ExampleArgs {
     }
 }
 
-/// Software renderers show black frames while shaders compile: the screenshot waits this long
-/// unless `--frames` says when.
-const DEFAULT_SCREENSHOT_FRAME: u32 = 400;
+/// Software renderers show black frames while shaders compile: a screenshot waits at least
+/// this many frames (or `--frames`), and until [`Readiness::ready`].
+const DEFAULT_SCREENSHOT_FRAME: u32 = 120;
+
+/// Render pipelines still compiling, counted by the render world each frame.
+#[derive(Resource, Clone, Default)]
+struct PendingPipelines(Arc<AtomicUsize>);
+
+fn count_pending_pipelines(cache: Res<PipelineCache>, pending: Res<PendingPipelines>) {
+    pending
+        .0
+        .store(cache.waiting_pipelines().count(), Ordering::Relaxed);
+}
+
+/// Whether the renderer has caught up: no pipeline has been waiting for the last
+/// [`Readiness::CALM`] frames. Screenshots wait for it; on a cold software renderer that can
+/// take minutes.
+#[derive(Resource, Default)]
+pub struct Readiness {
+    calm_frames: u32,
+}
+
+impl Readiness {
+    /// Frames without a waiting pipeline before the scene counts as rendered.
+    pub const CALM: u32 = 30;
+
+    /// True once every pipeline the scene needs has compiled.
+    pub fn ready(&self) -> bool {
+        self.calm_frames >= Self::CALM
+    }
+
+    /// Starts counting again (a new scene brings new pipelines).
+    pub fn reset(&mut self) {
+        self.calm_frames = 0;
+    }
+}
+
+fn track_readiness(pending: Res<PendingPipelines>, mut readiness: ResMut<Readiness>) {
+    if pending.0.load(Ordering::Relaxed) == 0 {
+        readiness.calm_frames += 1;
+    } else {
+        readiness.calm_frames = 0;
+    }
+}
 
 /// `DefaultPlugins` with a window titled `title` (1280×720 unless `--window` says), plus the
 /// `--frames`/`--screenshot` handling.
@@ -64,7 +109,17 @@ pub fn example_app(title: &str) -> App {
     }))
     .insert_resource(args)
     .init_resource::<FrameCount>()
+    .init_resource::<Readiness>()
+    .add_systems(First, track_readiness)
     .add_systems(Last, frames_and_screenshot);
+    let pending = PendingPipelines::default();
+    app.insert_resource(pending.clone());
+    app.sub_app_mut(RenderApp)
+        .insert_resource(pending)
+        .add_systems(
+            Render,
+            count_pending_pipelines.in_set(RenderSystems::Cleanup),
+        );
     app
 }
 
@@ -91,6 +146,7 @@ pub fn take_screenshot(commands: &mut Commands, path: PathBuf) {
 fn frames_and_screenshot(
     mut commands: Commands,
     args: Res<ExampleArgs>,
+    readiness: Res<Readiness>,
     mut count: ResMut<FrameCount>,
     done: Query<(), With<ScreenshotDone>>,
     mut exit: MessageWriter<AppExit>,
@@ -98,7 +154,7 @@ fn frames_and_screenshot(
     count.frames += 1;
     if let Some(path) = &args.screenshot {
         let at = args.frames.unwrap_or(DEFAULT_SCREENSHOT_FRAME);
-        if count.frames >= at && !count.requested {
+        if count.frames >= at && readiness.ready() && !count.requested {
             count.requested = true;
             take_screenshot(&mut commands, path.clone());
         }

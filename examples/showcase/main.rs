@@ -63,14 +63,15 @@ pub struct Featured;
 #[derive(Component)]
 struct Hud;
 
-/// `--tour DIR`: where the screenshots go and how far the tour is. Software renderers show
-/// black frames while shaders compile: the first scene waits 300 frames, later ones (most
-/// pipelines ready) 150.
+/// `--tour DIR`: where the screenshots go and how far the tour is. Each scene is saved after
+/// 120 frames once every render pipeline it needs has compiled (software renderers show black
+/// frames until then).
 #[derive(Resource)]
 struct Tour {
     dir: PathBuf,
     next: usize,
     frames_in_scene: u32,
+    requested: bool,
 }
 
 fn main() {
@@ -121,6 +122,7 @@ fn main() {
             dir: dir.into(),
             next: 0,
             frames_in_scene: 0,
+            requested: false,
         })
         .insert_state(Scene::ALL[0])
         .add_systems(Last, tour);
@@ -217,17 +219,21 @@ fn show_hud(
 fn tour(
     mut commands: Commands,
     mut tour: ResMut<Tour>,
+    mut readiness: ResMut<common::Readiness>,
     done: Query<Entity, With<common::ScreenshotDone>>,
     mut next: ResMut<NextState<Scene>>,
     mut exit: MessageWriter<AppExit>,
 ) {
     tour.frames_in_scene += 1;
     // The first scene waits for every shader; later ones only for their own new pipelines.
-    let wait = if tour.next == 0 { 300 } else { 150 };
+    if tour.frames_in_scene == 1 {
+        readiness.reset();
+    }
     if tour.frames_in_scene.is_multiple_of(50) {
         info!("tour: scene {}, frame {}", tour.next, tour.frames_in_scene);
     }
-    if tour.frames_in_scene == wait {
+    if tour.frames_in_scene >= 120 && readiness.ready() && !tour.requested {
+        tour.requested = true;
         let scene = Scene::ALL[tour.next];
         let path = tour.dir.join(format!("showcase_{}.png", scene.name()));
         common::take_screenshot(&mut commands, path);
@@ -236,6 +242,7 @@ fn tour(
         commands.entity(entity).despawn();
         tour.next += 1;
         tour.frames_in_scene = 0;
+        tour.requested = false;
         match Scene::ALL.get(tour.next) {
             Some(&scene) => next.set(scene),
             None => {
