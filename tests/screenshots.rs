@@ -8,11 +8,14 @@ use std::collections::HashMap;
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
-/// The screenshots CI takes: the showcase's three scenes, the wind and aero scenes.
-const EXPECTED: [&str; 5] = [
+/// The screenshots CI takes: the showcase's three scenes (and its banner and curtain), the wind
+/// and aero scenes.
+const EXPECTED: [&str; 7] = [
     "showcase_leaves.png",
     "showcase_coin.png",
     "showcase_flag.png",
+    "banner.png",
+    "curtain.png",
     "wind.png",
     "aero.png",
 ];

@@ -100,7 +100,9 @@ fn main() {
     let _ = write!(
         report.markdown,
         "# bevy_windfall: error against run time\n\nMeasured in one run of `report` ({build} \
-         build, {} threads available). Every number and plot below comes from this run.\n\n",
+         build, {}, {} threads available). Every number and plot below comes from this run; \
+         each time is the best of three batches.\n\n",
+        cpu_name(),
         std::thread::available_parallelism().map_or(1, |n| n.get())
     );
     spectrum::report(&mut report);
@@ -108,6 +110,7 @@ fn main() {
     freefall::report(&mut report);
     cloth::report(&mut report);
     aero::report(&mut report);
+    aero::particle_cloth(&mut report);
     costs::report(&mut report);
     stability::report(&mut report);
     let path = dir.join("report.md");
@@ -116,12 +119,28 @@ fn main() {
     eprintln!("report written to {}", path.display());
 }
 
-/// Mean wall time of `f`, s, over `repeats` calls (at least one).
+/// Wall time of one call of `f`, s: the mean over `repeats` calls (at least one), the best of
+/// three such batches, so that a burst of other work on the machine does not count.
 pub fn seconds_per(repeats: usize, mut f: impl FnMut()) -> f64 {
     let repeats = repeats.max(1);
-    let start = std::time::Instant::now();
-    for _ in 0..repeats {
-        f();
-    }
-    start.elapsed().as_secs_f64() / repeats as f64
+    (0..3)
+        .map(|_| {
+            let start = std::time::Instant::now();
+            for _ in 0..repeats {
+                f();
+            }
+            start.elapsed().as_secs_f64() / repeats as f64
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The processor's name, where the system tells it.
+fn cpu_name() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|info| {
+            let line = info.lines().find(|l| l.starts_with("model name"))?;
+            Some(line.split_once(':')?.1.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown processor".into())
 }

@@ -48,9 +48,27 @@ fn log_bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
         (lo.min(v), hi.max(v))
     });
     if lo.is_finite() && hi > 0.0 {
-        (lo / 1.5, hi * 1.5)
+        // At least a factor 25, so that a power of ten (a labelled tick) is inside.
+        let (lo, hi) = (lo / 1.5, hi * 1.5);
+        if hi / lo < 25.0 {
+            let middle = (lo * hi).sqrt();
+            (middle / 5.0, middle * 5.0)
+        } else {
+            (lo, hi)
+        }
     } else {
         (0.1, 10.0)
+    }
+}
+
+/// A log axis' tick label: 1, 2 and 5 times a power of ten are labelled, the rest left blank
+/// so that labels do not run into each other.
+fn tick(value: &f64) -> String {
+    let label = format!("{value:.0e}");
+    if label.starts_with(['1', '2', '5']) {
+        label
+    } else {
+        String::new()
     }
 }
 
@@ -71,8 +89,11 @@ pub fn draw(path: &Path, plot: &Plot) -> Result<(), Box<dyn std::error::Error>> 
         .configure_mesh()
         .x_desc(plot.x_label)
         .y_desc(plot.y_label)
-        .x_label_formatter(&|x| format!("{x:.0e}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .x_labels(12)
+        .y_labels(12)
+        .light_line_style(BLACK.mix(0.04))
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
         .draw()?;
     for (i, series) in plot.series.iter().enumerate() {
         let color = COLORS[i % COLORS.len()].to_rgba();

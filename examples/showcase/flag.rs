@@ -33,6 +33,16 @@ impl Fabric {
         }
     }
 
+    const ALL: [Self; 3] = [Self::Flag, Self::Banner, Self::Curtain];
+
+    fn name(self) -> &'static str {
+        match self {
+            Self::Flag => "flag",
+            Self::Banner => "banner",
+            Self::Curtain => "curtain",
+        }
+    }
+
     fn next(self) -> Self {
         match self {
             Self::Flag => Self::Banner,
@@ -46,11 +56,24 @@ impl Fabric {
 #[derive(Component)]
 pub struct Hanging;
 
+/// The curtain rod: shown only while the curtain hangs from it.
+#[derive(Component)]
+struct CurtainRod;
+
 #[derive(Resource)]
 struct Textures([Handle<Image>; 3]);
 
 pub fn plugin(app: &mut App) {
-    app.init_resource::<Fabric>()
+    // `--fabric flag|banner|curtain` picks the first fabric.
+    let fabric = app
+        .world()
+        .get_resource::<super::common::ExampleArgs>()
+        .and_then(|args| {
+            let name = args.rest.windows(2).find(|w| w[0] == "--fabric")?[1].clone();
+            Fabric::ALL.into_iter().find(|f| f.name() == name)
+        })
+        .unwrap_or_default();
+    app.insert_resource(fabric)
         .add_systems(Startup, paint_textures)
         .add_systems(OnEnter(Scene::Flag), setup)
         .add_systems(
@@ -159,9 +182,11 @@ fn setup(
         here.clone(),
     ));
     commands.spawn((
+        CurtainRod,
         Mesh3d(meshes.add(Cuboid::new(2.2, 0.06, 0.06))),
         MeshMaterial3d(metal),
         Transform::from_xyz(-2.6, 4.9, -2.5),
+        Visibility::Hidden,
         here.clone(),
     ));
     // The cloth's mesh and shape come from `apply_fabric`.
@@ -232,9 +257,15 @@ fn apply_fabric(
     fabric: Res<Fabric>,
     textures: Res<Textures>,
     hanging: Single<(Entity, &MeshMaterial3d<StandardMaterial>), With<Hanging>>,
+    mut rod: Single<&mut Visibility, With<CurtainRod>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
 ) {
     let (entity, material) = *hanging;
+    **rod = if *fabric == Fabric::Curtain {
+        Visibility::Inherited
+    } else {
+        Visibility::Hidden
+    };
     let (cloth, transform) = cloth_for(*fabric, false);
     if let Some(mut m) = materials.get_mut(&material.0) {
         m.base_color_texture = Some(textures.0[*fabric as usize].clone());

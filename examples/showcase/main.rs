@@ -5,8 +5,8 @@
 //! Keys: 1 leaves, 2 coin, 3 flag · G gizmos (off, wind, paths and yarns, all) · ↑/↓ wind speed ·
 //! ←/→ wind direction · in the flag scene V flag/banner/curtain, F frozen/non-frozen.
 //!
-//! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag] [--gizmos]
-//! [--frames N] [--screenshot PATH] [--tour DIR]`
+//! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag]
+//! [--fabric flag|banner|curtain] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`
 //!
 //! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits;
 //! `--gizmos` starts with the falling paths and cloth yarns drawn.
