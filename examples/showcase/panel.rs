@@ -21,11 +21,13 @@ pub fn plugin(app: &mut App) {
         .add_systems(EguiPrimaryContextPass, panel);
 }
 
-/// Wind settings being edited that need a rebuild, and the last rebuild's refusal.
+/// Wind settings being edited that need a rebuild, the last rebuild's refusal, and the scene
+/// the panel last showed (a new scene opens its own sections).
 #[derive(Resource, Default)]
 struct Draft {
     wind: Option<WindConfig>,
     rebuild_error: Option<String>,
+    scene: Option<Scene>,
 }
 
 #[derive(SystemParam)]
@@ -54,6 +56,10 @@ fn panel(
     mut objects: Objects,
 ) -> Result {
     let ctx = contexts.ctx_mut()?;
+    // On entering a scene, open the sections that edit what it shows and close the others.
+    let now = *scene.get();
+    let entered = draft.scene.replace(now) != Some(now);
+    let open = |shown: bool| entered.then_some(shown);
     egui::Window::new("bevy_windfall")
         .default_pos([960.0, 10.0])
         .default_width(300.0)
@@ -72,10 +78,14 @@ fn panel(
                 .header_response
                 .on_hover_text("the WindField shared by every scene");
                 egui::CollapsingHeader::new("Falling object")
-                    .default_open(true)
+                    .open(open(now != Scene::Flag))
                     .show(ui, |ui| falling_section(ui, &mut objects));
-                ui.collapsing("Cloth", |ui| cloth_section(ui, &mut objects));
-                ui.collapsing("Aero bodies", |ui| aero_section(ui, &mut objects));
+                egui::CollapsingHeader::new("Cloth")
+                    .open(open(now == Scene::Flag))
+                    .show(ui, |ui| cloth_section(ui, &mut objects));
+                egui::CollapsingHeader::new("Aero bodies")
+                    .open(open(false))
+                    .show(ui, |ui| aero_section(ui, &mut objects));
                 ui.collapsing("Gizmos", |ui| {
                     ui.checkbox(&mut wind.wind_gizmos.enabled, "wind arrows");
                     ui.checkbox(&mut wind.fall_gizmos.enabled, "falling paths");
