@@ -10,7 +10,7 @@ use bevy_egui::{EguiContexts, EguiPlugin, EguiPrimaryContextPass, egui};
 use bevy_windfall::cloth::{ClothGizmos, ClothWindModel, LeadingYarn};
 use bevy_windfall::freefall::FallGizmos;
 use bevy_windfall::prelude::*;
-use bevy_windfall::wind::{WindGizmos, WindRebuild};
+use bevy_windfall::wind::{WindGizmos, WindRebuild, WindRebuilt};
 
 use super::flag::Hanging;
 use super::{Featured, Scene};
@@ -28,12 +28,16 @@ struct Draft {
     wind: Option<WindConfig>,
     rebuild_error: Option<String>,
     scene: Option<Scene>,
+    /// When the rebuild in flight started, and how long the last one took.
+    rebuild_started: Option<std::time::Instant>,
+    last_rebuild: Option<std::time::Duration>,
 }
 
 #[derive(SystemParam)]
-struct Wind<'w> {
+struct Wind<'w, 's> {
     field: ResMut<'w, WindField>,
     rebuild: Option<Res<'w, WindRebuild>>,
+    rebuilt: MessageReader<'w, 's, WindRebuilt>,
     wind_gizmos: ResMut<'w, WindGizmos>,
     fall_gizmos: ResMut<'w, FallGizmos>,
     cloth_gizmos: ResMut<'w, ClothGizmos>,
@@ -139,25 +143,39 @@ fn wind_section(ui: &mut egui::Ui, commands: &mut Commands, draft: &mut Draft, w
             TemporalMode::Frozen
         };
     }
-    ui.add(egui::DragValue::new(&mut config.seed).prefix("seed "));
-    let dirty = *config != current;
     ui.horizontal(|ui| {
-        if wind.rebuild.is_some() {
-            ui.spinner();
-            ui.label("building in the background…");
-        } else if ui
-            .add_enabled(dirty, egui::Button::new("Regenerate"))
-            .clicked()
-        {
-            match WindRebuild::start(config.clone()) {
-                Ok(job) => {
-                    commands.insert_resource(job);
-                    draft.rebuild_error = None;
-                }
-                Err(e) => draft.rebuild_error = Some(e.to_string()),
-            }
+        ui.add(egui::DragValue::new(&mut config.seed).prefix("seed "));
+        if ui.button("New seed").clicked() {
+            config.seed = config.seed.wrapping_add(1);
         }
     });
+    // The turbulence is rebuilt in the background once the pointer lets go of a control, and
+    // again after that if the settings changed meanwhile; the old field blows until then.
+    let dirty = *config != current;
+    if wind.rebuild.is_some() {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label("building in the background…");
+        });
+    } else if dirty && !ui.input(|i| i.pointer.any_down()) {
+        match WindRebuild::start(config.clone()) {
+            Ok(job) => {
+                commands.insert_resource(job);
+                draft.rebuild_error = None;
+                draft.rebuild_started = Some(std::time::Instant::now());
+            }
+            Err(e) => draft.rebuild_error = Some(e.to_string()),
+        }
+    }
+    if wind.rebuilt.read().count() > 0 {
+        draft.last_rebuild = draft.rebuild_started.take().map(|t| t.elapsed());
+    }
+    if let Some(took) = draft.last_rebuild {
+        ui.label(format!(
+            "last rebuild: {:.0} ms, off the frame",
+            took.as_secs_f64() * 1e3
+        ));
+    }
     if let Some(e) = &draft.rebuild_error {
         ui.colored_label(egui::Color32::RED, e);
     }
