@@ -48,7 +48,7 @@ fn log_bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
         (lo.min(v), hi.max(v))
     });
     if lo.is_finite() && hi > 0.0 {
-        // At least a factor 25, so that a power of ten (a labelled tick) is inside.
+        // At least a factor 25, so that several labelled ticks (1, 2, 5 × 10^k) are inside.
         let (lo, hi) = (lo / 1.5, hi * 1.5);
         if hi / lo < 25.0 {
             let middle = (lo * hi).sqrt();
