@@ -1,11 +1,26 @@
 //! The precomputed trajectory database of §2.2: swing segments of the harmonic fluttering
-//! function (eq. 5), clustered by feature vector with k-means, each with an orientation profile
-//! from the ODE of eq. 4.
+//! function (eq. 5), each paired with a plate-angle profile from the ODE of eq. 4, clustered by
+//! feature vector with k-means.
 //!
 //! Units are the fall's own: length U/Ω and time 1/Ω (U from eq. 3, Ω the swing rate). Eq. 5
 //! becomes x = −α sin τ, y = −τ − (γ/2) cos 2τ with α = A_x/U and γ = A_y/U; a segment runs
-//! between the turning points τ = π/2 and 3π/2, so its feature vector is V = (2α, −π): in these
-//! units k-means groups the segments by how far they glide sideways per drop.
+//! between the turning points τ = π/2 and 3π/2.
+//!
+//! **Feature vectors.** The paper's V = P¹ − P⁰ is (2α, −π) for every segment of eq. 5 in these
+//! units: the drop per swing is the same for all, and γ, which shapes the descent within a swing,
+//! cancels at the turning points. Clustering on it alone would sort the segments by α and nothing
+//! else. Each segment's feature vector therefore carries what really tells swings apart, in four
+//! components: the paper's glide P¹ − P⁰ (2α, −π), the depth γ of the vertical modulation (how
+//! much the object slows at the turning points and hurries in the middle), and the half-range Θ
+//! of the plate angle from eq. 4. k-means runs on them standardised: the glide on a log scale
+//! (swings of 0.2 and 0.3 differ as much as swings of 2 and 3), each component divided by its
+//! spread over the database (a constant component drops out), the glide counted twice, since it
+//! is what keeps a zigzag round its centre.
+//!
+//! **Search.** The key is the feature vector the next swing should have (§2.3.1); the search
+//! goes to the nearest cluster and takes one of its [`CANDIDATES`] members nearest to the key at
+//! random, so the glide is close to the one asked for and the modulation and angle vary from
+//! swing to swing.
 
 use bevy::math::Vec2;
 
@@ -15,31 +30,38 @@ use super::random::FallRng;
 /// Samples per segment (positions and angles, both ends included).
 pub const SEGMENT_SAMPLES: usize = 33;
 
-/// One swing from turning point to turning point, gliding right (+x).
+/// Components of a feature vector: glide Δx, drop Δy, modulation γ, angle half-range Θ.
+pub const FEATURES: usize = 4;
+
+/// A feature vector (see the module docs).
+pub type Feature = [f32; FEATURES];
+
+/// One swing from turning point to turning point, gliding right (+x), in the fall's units.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Segment {
     /// α = A_x / U of eq. 5.
     pub alpha: f32,
     /// γ = A_y / U of eq. 5.
     pub gamma: f32,
-    /// Positions relative to the start, at equal times.
+    /// Positions relative to the start, at equal times over the segment's duration π.
     pub points: [Vec2; SEGMENT_SAMPLES],
-    /// Fluttering plate angle (rad, counter-clockwise from horizontal) at the same times, from
-    /// a half-swing of eq. 4.
-    pub flutter: [f32; SEGMENT_SAMPLES],
-    /// Tumbling: angle turned since the start of the swing, 0 → π, from eq. 4.
-    pub tumble: [f32; SEGMENT_SAMPLES],
-    /// (cos θ/2, sin θ/2) of `flutter`: the rotation as a unit complex number, so a pose is a
-    /// normalised lerp, not a sine and cosine per frame.
-    pub flutter_half: [Vec2; SEGMENT_SAMPLES],
-    /// (cos θ/2, sin θ/2) of `tumble`.
-    pub tumble_half: [Vec2; SEGMENT_SAMPLES],
+    /// Θ: half the plate's angle range over the swing, rad (from the eq. 4 profile).
+    pub angle_range: f32,
+    /// The plate angle's progress over the swing from eq. 4, 0 at the start and 1 at the end
+    /// (monotone): a swing turns the plate from its start angle to its end angle along it.
+    pub angle_shape: [f32; SEGMENT_SAMPLES],
 }
 
 impl Segment {
-    /// P¹ − P⁰.
-    pub fn feature(&self) -> Vec2 {
+    /// P¹ − P⁰, the paper's feature vector.
+    pub fn glide(&self) -> Vec2 {
         self.points[SEGMENT_SAMPLES - 1] - self.points[0]
+    }
+
+    /// The full feature vector: (P¹ − P⁰, γ, Θ).
+    pub fn feature(&self) -> Feature {
+        let g = self.glide();
+        [g.x, g.y, self.gamma, self.angle_range]
     }
 }
 
@@ -53,7 +75,8 @@ pub struct DatabaseConfig {
     /// Number of k-means clusters.
     pub clusters: usize,
     /// Lift values K of eq. 4 (with [`TanabeKaneko::FLUTTER`]'s other parameters) whose
-    /// half-swings give the fluttering angles; larger K, wider swings.
+    /// half-swings give the plate-angle profiles; larger K, wider swings. Every (α, γ) is paired
+    /// with every profile.
     pub flutter_lifts: Vec<f64>,
     /// Seed of the k-means initialisation.
     pub seed: u64,
@@ -62,20 +85,32 @@ pub struct DatabaseConfig {
 impl Default for DatabaseConfig {
     fn default() -> Self {
         Self {
-            alphas: (0..12).map(|i| 0.15 * 1.35f32.powi(i)).collect(),
-            gammas: vec![0.0, 0.3, 0.6, 0.9, 1.2],
-            clusters: 6,
-            flutter_lifts: vec![0.1, 0.2, 0.3, 0.4, 0.5, 0.6],
+            alphas: (0..12).map(|i| 0.1 * 1.5f32.powi(i)).collect(),
+            gammas: vec![0.0, 0.4, 0.8, 1.2],
+            clusters: 12,
+            flutter_lifts: vec![0.15, 0.3, 0.45, 0.6],
             seed: 7,
         }
     }
 }
 
+/// Members of the nearest cluster the search picks from at random.
+pub const CANDIDATES: usize = 4;
+
+/// Largest α and γ accepted in a [`DatabaseConfig`]: glides of 200 swing lengths per drop are
+/// far beyond any fall; larger values are dropped.
+pub const MAX_DATABASE_PARAMETER: f32 = 100.0;
+
 /// Segments, their k-means clusters, and the lookup the search tree uses.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TrajectoryDatabase {
     segments: Vec<Segment>,
-    centroids: Vec<Vec2>,
+    /// The tumbling half-turn of eq. 4: progress 0 → 1 over the half-turn.
+    tumble_shape: [f32; SEGMENT_SAMPLES],
+    /// 1 / spread of each feature component (0 for a constant one).
+    weights: Feature,
+    widest: f32,
+    centroids: Vec<Feature>,
     members: Vec<Vec<u32>>,
 }
 
@@ -87,24 +122,33 @@ impl Default for TrajectoryDatabase {
 }
 
 impl TrajectoryDatabase {
-    /// Builds the database: one segment per (α, γ), angles from RK4 solutions of eq. 4,
-    /// k-means over the feature vectors. Empty parameter lists fall back to the defaults.
+    /// Builds the database: one segment per (α, γ, profile), angles from RK4 solutions of eq. 4,
+    /// k-means over the standardised feature vectors. Empty, negative, non-finite or oversized
+    /// parameter lists fall back to the defaults.
     pub fn build(config: &DatabaseConfig) -> Self {
         let defaults = DatabaseConfig::default();
         let pick = |v: &Vec<f32>, d: &Vec<f32>| {
             let v: Vec<f32> = v
                 .iter()
                 .copied()
-                .filter(|x| x.is_finite() && *x >= 0.0)
+                .filter(|x| x.is_finite() && (0.0..=MAX_DATABASE_PARAMETER).contains(x))
+                .take(64)
                 .collect();
             if v.is_empty() { d.clone() } else { v }
         };
         let alphas = pick(&config.alphas, &defaults.alphas);
         let gammas = pick(&config.gammas, &defaults.gammas);
-        let lifts = if config.flutter_lifts.is_empty() {
+        let lifts: Vec<f64> = config
+            .flutter_lifts
+            .iter()
+            .copied()
+            .filter(|k| k.is_finite() && (0.0..=10.0).contains(k))
+            .take(16)
+            .collect();
+        let lifts = if lifts.is_empty() {
             defaults.flutter_lifts.clone()
         } else {
-            config.flutter_lifts.clone()
+            lifts
         };
         let mut profiles: Vec<[f32; SEGMENT_SAMPLES]> = lifts
             .iter()
@@ -116,30 +160,27 @@ impl TrajectoryDatabase {
             })
             .collect();
         if profiles.is_empty() {
-            profiles.push([0.0; SEGMENT_SAMPLES]);
+            // A gentle rocking of ±0.3 rad if no lift flutters.
+            profiles.push(std::array::from_fn(|i| {
+                let s = i as f32 / (SEGMENT_SAMPLES - 1) as f32;
+                -0.3 * (std::f32::consts::PI * s).cos()
+            }));
         }
-        profiles.sort_by(|a, b| a[0].abs().total_cmp(&b[0].abs()));
-        let tumble = tumble_profile(&TanabeKaneko::TUMBLE);
-        let (alpha_min, alpha_max) = alphas.iter().fold((f32::INFINITY, 0.0f32), |(lo, hi), &a| {
-            (lo.min(a), hi.max(a))
-        });
-        let mut segments = Vec::with_capacity(alphas.len() * gammas.len());
+        let mut segments = Vec::with_capacity(alphas.len() * gammas.len() * profiles.len());
         for &alpha in &alphas {
-            // Wider glides get the wider ODE swings.
-            let rank = if alpha_max > alpha_min {
-                (alpha.ln() - alpha_min.max(1e-6).ln())
-                    / (alpha_max.ln() - alpha_min.max(1e-6).ln())
-            } else {
-                0.5
-            };
-            let profile = profiles
-                [((rank * (profiles.len() - 1) as f32).round() as usize).min(profiles.len() - 1)];
             for &gamma in &gammas {
-                segments.push(harmonic_segment(alpha, gamma, profile, tumble));
+                for profile in &profiles {
+                    segments.push(harmonic_segment(alpha, gamma, profile));
+                }
             }
         }
-        let features: Vec<Vec2> = segments.iter().map(Segment::feature).collect();
-        let (centroids, labels) = kmeans(&features, config.clusters.max(1), config.seed);
+        let features: Vec<Feature> = segments
+            .iter()
+            .map(|s| search_space(&s.feature()))
+            .collect();
+        let weights = standardising_weights(&features);
+        let scaled: Vec<Feature> = features.iter().map(|f| scale(f, &weights)).collect();
+        let (centroids, labels) = kmeans(&scaled, config.clusters.clamp(1, 64), config.seed);
         let mut members = vec![Vec::new(); centroids.len()];
         for (i, label) in labels.iter().enumerate() {
             members[*label].push(i as u32);
@@ -153,7 +194,10 @@ impl TrajectoryDatabase {
             .collect();
         members.retain(|m| !m.is_empty());
         Self {
+            widest: segments.iter().map(|s| s.angle_range).fold(0.0, f32::max),
             segments,
+            tumble_shape: tumble_profile(&TanabeKaneko::TUMBLE),
+            weights,
             centroids,
             members,
         }
@@ -164,13 +208,23 @@ impl TrajectoryDatabase {
         &self.segments
     }
 
-    /// Segment `index`.
+    /// Segment `index` (clamped to the last one).
     pub fn segment(&self, index: u32) -> &Segment {
-        &self.segments[index as usize]
+        &self.segments[(index as usize).min(self.segments.len() - 1)]
     }
 
-    /// Cluster centres (feature vectors).
-    pub fn centroids(&self) -> &[Vec2] {
+    /// The largest angle half-range Θ of any segment, rad.
+    pub fn widest_angle_range(&self) -> f32 {
+        self.widest
+    }
+
+    /// The tumbling half-turn's progress over a swing (0 → 1, from eq. 4).
+    pub fn tumble_shape(&self) -> &[f32; SEGMENT_SAMPLES] {
+        &self.tumble_shape
+    }
+
+    /// Cluster centres, in standardised feature units.
+    pub fn centroids(&self) -> &[Feature] {
         &self.centroids
     }
 
@@ -179,17 +233,13 @@ impl TrajectoryDatabase {
         &self.members
     }
 
-    /// The cluster whose centre is nearest to `feature` (the search key of §2.3.1), with the
-    /// key's vertical component normalised to the database's −π so the glide ratio decides.
-    pub fn nearest_cluster(&self, feature: Vec2) -> usize {
-        let key = if feature.y.abs() > 0.0 && feature.is_finite() {
-            feature * (std::f32::consts::PI / feature.y.abs())
-        } else {
-            Vec2::new(0.0, -std::f32::consts::PI)
-        };
+    /// The cluster whose centre is nearest to `key` (the search key of §2.3.1, a feature vector
+    /// in the fall's units; non-finite components count as 0).
+    pub fn nearest_cluster(&self, key: &Feature) -> usize {
+        let key = self.scaled_key(key);
         let mut best = (0, f32::INFINITY);
         for (i, c) in self.centroids.iter().enumerate() {
-            let d = c.distance_squared(key);
+            let d = distance_squared(c, &key);
             if d < best.1 {
                 best = (i, d);
             }
@@ -197,12 +247,36 @@ impl TrajectoryDatabase {
         best.0
     }
 
-    /// A segment of the cluster nearest to `feature`, picked at random.
-    pub fn find(&self, feature: Vec2, rng: &mut FallRng) -> u32 {
-        self.pick(self.nearest_cluster(feature), rng)
+    /// The search tree's child for `key`: one of the [`CANDIDATES`] members of the nearest
+    /// cluster that are nearest to the key, at random.
+    pub fn find(&self, key: &Feature, rng: &mut FallRng) -> u32 {
+        let scaled = self.scaled_key(key);
+        let members = &self.members[self.nearest_cluster(key)];
+        let mut best = [(u32::MAX, f32::INFINITY); CANDIDATES];
+        for &m in members {
+            let f = scale(&search_space(&self.segment(m).feature()), &self.weights);
+            let d = distance_squared(&f, &scaled);
+            if let Some(slot) = best.iter().position(|b| d < b.1) {
+                best.copy_within(slot..CANDIDATES - 1, slot + 1);
+                best[slot] = (m, d);
+            }
+        }
+        let found = best.iter().filter(|b| b.0 != u32::MAX).count().max(1);
+        let pick = ((rng.uniform() * found as f32) as usize).min(found - 1);
+        if best[pick].0 == u32::MAX {
+            members[0]
+        } else {
+            best[pick].0
+        }
     }
 
-    /// A random member of cluster `cluster` (clamped to the last cluster).
+    fn scaled_key(&self, key: &Feature) -> Feature {
+        let key = key.map(|x| if x.is_finite() { x } else { 0.0 });
+        scale(&search_space(&key), &self.weights)
+    }
+
+    /// A random member of cluster `cluster` (clamped to the last cluster): one child of the
+    /// search tree.
     pub fn pick(&self, cluster: usize, rng: &mut FallRng) -> u32 {
         let members = &self.members[cluster.min(self.members.len() - 1)];
         let pick = ((rng.uniform() * members.len() as f32) as usize).min(members.len() - 1);
@@ -212,39 +286,48 @@ impl TrajectoryDatabase {
     /// Approximate heap size, bytes.
     pub fn size_bytes(&self) -> usize {
         self.segments.len() * std::mem::size_of::<Segment>()
-            + self.centroids.len() * std::mem::size_of::<Vec2>()
+            + self.centroids.len() * std::mem::size_of::<Feature>()
             + self.members.iter().map(|m| m.len() * 4).sum::<usize>()
     }
 }
 
-/// Eq. 5 in the fall's units between the turning points π/2 and 3π/2.
-fn harmonic_segment(
-    alpha: f32,
-    gamma: f32,
-    flutter: [f32; SEGMENT_SAMPLES],
-    tumble: [f32; SEGMENT_SAMPLES],
-) -> Segment {
+/// Eq. 5 in the fall's units between the turning points π/2 and 3π/2, with an angle profile.
+fn harmonic_segment(alpha: f32, gamma: f32, flutter: &[f32; SEGMENT_SAMPLES]) -> Segment {
     let at = |tau: f32| Vec2::new(-alpha * tau.sin(), -tau - 0.5 * gamma * (2.0 * tau).cos());
     let start = at(std::f32::consts::FRAC_PI_2);
     let points = std::array::from_fn(|i| {
         let s = i as f32 / (SEGMENT_SAMPLES - 1) as f32;
         at(std::f32::consts::FRAC_PI_2 + std::f32::consts::PI * s) - start
     });
-    let half = |angles: &[f32; SEGMENT_SAMPLES]| {
-        angles.map(|a| {
-            let (s, c) = (0.5 * a).sin_cos();
-            Vec2::new(c, s)
-        })
-    };
+    let (first, last) = (flutter[0], flutter[SEGMENT_SAMPLES - 1]);
     Segment {
         alpha,
         gamma,
         points,
-        flutter_half: half(&flutter),
-        tumble_half: half(&tumble),
-        flutter,
-        tumble,
+        angle_range: 0.5 * (last - first).abs(),
+        angle_shape: progress(flutter),
     }
+}
+
+/// A profile's progress from its first to its last value, 0 → 1, made monotone (a running
+/// maximum) so a swing never turns back within itself.
+fn progress(profile: &[f32; SEGMENT_SAMPLES]) -> [f32; SEGMENT_SAMPLES] {
+    let (first, last) = (profile[0], profile[SEGMENT_SAMPLES - 1]);
+    let span = last - first;
+    let mut running = 0.0f32;
+    std::array::from_fn(|i| {
+        let s = if span.abs() > 1e-9 {
+            ((profile[i] - first) / span).clamp(0.0, 1.0)
+        } else {
+            i as f32 / (SEGMENT_SAMPLES - 1) as f32
+        };
+        running = running.max(s);
+        if i == SEGMENT_SAMPLES - 1 {
+            1.0
+        } else {
+            running
+        }
+    })
 }
 
 /// The last complete half-swing (between sign changes of u) of a fluttering run of eq. 4,
@@ -273,14 +356,21 @@ fn flutter_profile(params: &TanabeKaneko) -> Option<[f32; SEGMENT_SAMPLES]> {
     } else {
         -1.0
     };
-    Some(resample(swing, |s| (sign * s.theta) as f32))
+    let profile = resample(swing, |s| (sign * s.theta) as f32);
+    // A swing to the right turns the plate counter-clockwise (as a right tumble does).
+    if profile[SEGMENT_SAMPLES - 1] - profile[0] > 0.05 {
+        Some(profile)
+    } else if profile[0] - profile[SEGMENT_SAMPLES - 1] > 0.05 {
+        Some(profile.map(|a| -a))
+    } else {
+        None
+    }
 }
 
-/// One half-turn of a tumbling run of eq. 4 (θ advancing by π), as the angle turned since its
-/// start, resampled to equal times. Falls back to a uniform turn if the run does not tumble.
+/// One half-turn of a tumbling run of eq. 4 (θ advancing by π), as progress 0 → 1, resampled to
+/// equal times. Falls back to a uniform turn if the run does not tumble.
 fn tumble_profile(params: &TanabeKaneko) -> [f32; SEGMENT_SAMPLES] {
-    let uniform =
-        std::array::from_fn(|i| std::f32::consts::PI * i as f32 / (SEGMENT_SAMPLES - 1) as f32);
+    let uniform = std::array::from_fn(|i| i as f32 / (SEGMENT_SAMPLES - 1) as f32);
     let start = OdeState {
         theta: 0.3,
         v: -0.01,
@@ -300,7 +390,9 @@ fn tumble_profile(params: &TanabeKaneko) -> [f32; SEGMENT_SAMPLES] {
     }
     let swing = &run[marks[marks.len() - 3]..=marks[marks.len() - 2]];
     let theta0 = swing[0].theta;
-    resample(swing, |s| (direction * (s.theta - theta0)) as f32)
+    progress(&resample(swing, |s| {
+        (direction * (s.theta - theta0)) as f32
+    }))
 }
 
 fn resample(run: &[OdeState], value: impl Fn(&OdeState) -> f32) -> [f32; SEGMENT_SAMPLES] {
@@ -312,8 +404,41 @@ fn resample(run: &[OdeState], value: impl Fn(&OdeState) -> f32) -> [f32; SEGMENT
     })
 }
 
+/// The feature vector as the search compares it: the glide on a log scale.
+fn search_space(f: &Feature) -> Feature {
+    [f[0].abs().max(1e-3).ln(), f[1], f[2], f[3]]
+}
+
+/// 1 / standard deviation of each component over `features` (0 where it is constant), the
+/// glide's doubled.
+fn standardising_weights(features: &[Feature]) -> Feature {
+    let n = features.len().max(1) as f32;
+    std::array::from_fn(|c| {
+        let mean = features.iter().map(|f| f[c]).sum::<f32>() / n;
+        let var = features.iter().map(|f| (f[c] - mean).powi(2)).sum::<f32>() / n;
+        let emphasis = if c == 0 { 2.0 } else { 1.0 };
+        if var > 1e-12 {
+            emphasis / var.sqrt()
+        } else {
+            0.0
+        }
+    })
+}
+
+fn scale(f: &Feature, weights: &Feature) -> Feature {
+    std::array::from_fn(|c| f[c] * weights[c])
+}
+
+fn distance_squared<const N: usize>(a: &[f32; N], b: &[f32; N]) -> f32 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+}
+
 /// Lloyd's k-means with k-means++ seeding from a seeded stream; returns centres and labels.
-pub fn kmeans(points: &[Vec2], k: usize, seed: u64) -> (Vec<Vec2>, Vec<usize>) {
+pub(crate) fn kmeans<const N: usize>(
+    points: &[[f32; N]],
+    k: usize,
+    seed: u64,
+) -> (Vec<[f32; N]>, Vec<usize>) {
     if points.is_empty() {
         return (Vec::new(), Vec::new());
     }
@@ -326,7 +451,7 @@ pub fn kmeans(points: &[Vec2], k: usize, seed: u64) -> (Vec<Vec2>, Vec<usize>) {
             .map(|p| {
                 centres
                     .iter()
-                    .map(|c| c.distance_squared(*p))
+                    .map(|c| distance_squared(c, p))
                     .fold(f32::INFINITY, f32::min)
             })
             .collect();
@@ -348,22 +473,22 @@ pub fn kmeans(points: &[Vec2], k: usize, seed: u64) -> (Vec<Vec2>, Vec<usize>) {
         for (label, p) in labels.iter_mut().zip(points) {
             let nearest = (0..k)
                 .min_by(|&a, &b| {
-                    centres[a]
-                        .distance_squared(*p)
-                        .total_cmp(&centres[b].distance_squared(*p))
+                    distance_squared(&centres[a], p).total_cmp(&distance_squared(&centres[b], p))
                 })
                 .unwrap_or(0);
             changed |= nearest != *label;
             *label = nearest;
         }
         for (c, centre) in centres.iter_mut().enumerate() {
-            let (sum, n) = points
-                .iter()
-                .zip(&labels)
-                .filter(|(_, l)| **l == c)
-                .fold((Vec2::ZERO, 0), |(s, n), (p, _)| (s + *p, n + 1));
+            let (sum, n) = points.iter().zip(&labels).filter(|(_, l)| **l == c).fold(
+                ([0.0f32; N], 0),
+                |(mut s, n), (p, _)| {
+                    s.iter_mut().zip(p).for_each(|(a, b)| *a += b);
+                    (s, n + 1)
+                },
+            );
             if n > 0 {
-                *centre = sum / n as f32;
+                *centre = sum.map(|s| s / n as f32);
             }
         }
         if !changed {
@@ -378,33 +503,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn segments_end_at_turning_points_with_the_eq5_feature() {
-        let db = TrajectoryDatabase::default();
-        for s in db.segments() {
-            let f = s.feature();
-            assert!((f.x - 2.0 * s.alpha).abs() < 1e-5, "{f:?} α = {}", s.alpha);
-            assert!((f.y + std::f32::consts::PI).abs() < 1e-5);
-        }
-    }
-
-    #[test]
-    fn ode_profiles_flutter_and_tumble() {
-        let db = TrajectoryDatabase::default();
-        let s = &db.segments()[0];
-        // A half-swing goes from one extreme angle to the opposite one.
-        assert!(
-            s.flutter[0] * s.flutter[SEGMENT_SAMPLES - 1] < 0.0,
-            "{:?}",
-            s.flutter
-        );
-        assert!((s.tumble[SEGMENT_SAMPLES - 1] - std::f32::consts::PI).abs() < 0.05);
-        assert!(s.tumble.windows(2).all(|w| w[1] >= w[0] - 1e-3));
-    }
-
-    #[test]
     fn kmeans_separates_two_blobs() {
-        let mut points: Vec<Vec2> = (0..20).map(|i| Vec2::new(i as f32 * 0.01, 0.0)).collect();
-        points.extend((0..20).map(|i| Vec2::new(10.0 + i as f32 * 0.01, 0.0)));
+        let mut points: Vec<[f32; 2]> = (0..20).map(|i| [i as f32 * 0.01, 0.0]).collect();
+        points.extend((0..20).map(|i| [10.0 + i as f32 * 0.01, 0.0]));
         let (centres, labels) = kmeans(&points, 2, 1);
         assert!(labels[..20].iter().all(|l| *l == labels[0]));
         assert!(
@@ -412,7 +513,7 @@ mod tests {
                 .iter()
                 .all(|l| *l == labels[20] && *l != labels[0])
         );
-        let mut xs: Vec<f32> = centres.iter().map(|c| c.x).collect();
+        let mut xs: Vec<f32> = centres.iter().map(|c| c[0]).collect();
         xs.sort_by(f32::total_cmp);
         assert!((xs[0] - 0.095).abs() < 1e-4 && (xs[1] - 10.095).abs() < 1e-4);
     }

@@ -1,5 +1,6 @@
 //! The Markov chain of primitive motions (§3.1–3.2, eq. 9).
 
+use bevy::reflect::Reflect;
 use thiserror::Error;
 
 use super::random::FallRng;
@@ -50,12 +51,23 @@ impl MarkovError {
 }
 
 /// First-order discrete-time Markov chain over L1..L6 (§3.2): where a fall starts, and
-/// p_ij = P[next motion L_j | current motion L_i], one step per motion segment.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// p_ij = P[next motion L_j | current motion L_i] over one chain step of
+/// [`MarkovChain::step_seconds`] of fall.
+///
+/// A fall changes motion only where one piece (a swing, or a stretch of eq. 6) ends and the next
+/// begins; a piece of d seconds leaves motion L_i with probability 1 − p_ii^(d / step), to L_j
+/// (j ≠ i) in proportion to p_ij. So a motion lasts step / (1 − p_ii) seconds on average,
+/// whatever the object's size, and the matrix is what a designer reads: "stays a second in
+/// fluttering" is p_ii = 1 − step / 1 s.
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct MarkovChain {
     initial: [f32; 6],
     transitions: [[f32; 6]; 6],
+    step: f32,
 }
+
+/// Seconds of fall per chain step of the default chain and of [`MarkovChain::new`].
+pub const CHAIN_STEP: f32 = 0.25;
 
 impl Default for MarkovChain {
     /// Our default (the paper's Fig. 11 numbers are not in its text). Rows L1..L6:
@@ -70,10 +82,12 @@ impl Default for MarkovChain {
     /// | L5 TH | 0 | 0 | 0 | 0 | .80 | .20 |
     /// | L6 PS | 0 | 0 | 0 | 0 | 0 | 1 |
     ///
-    /// A release usually starts steady or fluttering, and a motion lasts a few segments
-    /// (1 / (1 − p_ii) on average) before the next.
+    /// One step is [`CHAIN_STEP`] = 0.25 s: a release usually starts steady or fluttering, and a
+    /// motion lasts 0.25 s / (1 − p_ii) on average (0.4 s steady, 0.8 s fluttering, 1 s
+    /// tumbling, 1.25 s helix) before the next.
     fn default() -> Self {
         Self {
+            step: CHAIN_STEP,
             initial: [0.35, 0.30, 0.10, 0.15, 0.05, 0.05],
             transitions: [
                 [0.40, 0.30, 0.10, 0.10, 0.05, 0.05],
@@ -105,7 +119,63 @@ impl MarkovChain {
         Ok(Self {
             initial,
             transitions,
+            step: CHAIN_STEP,
         })
+    }
+
+    /// The same chain with one step lasting `seconds` (finite, > 0; otherwise the step is
+    /// kept).
+    pub fn with_step_seconds(mut self, seconds: f32) -> Self {
+        if seconds.is_finite() && seconds > 0.0 {
+            self.step = seconds;
+        }
+        self
+    }
+
+    /// Seconds of fall per chain step.
+    pub fn step_seconds(&self) -> f32 {
+        self.step
+    }
+
+    /// A chain from the mean time (s) a fall stays in each motion and where it goes next:
+    /// `dwell[i]` seconds in L_i (infinite: it stays), `next[i]` the relative weights of the
+    /// motions after L_i (only those above i count). p_ii = 1 − step / dwell, the rest shared by
+    /// the weights. Errors as [`MarkovChain::new`] (a row with no weight above it must stay).
+    pub fn from_dwell_times(
+        initial: [f32; 6],
+        dwell: [f32; 6],
+        next: [[f32; 6]; 6],
+    ) -> Result<Self, MarkovError> {
+        let mut transitions = [[0.0f32; 6]; 6];
+        for i in 0..6 {
+            let stay = if dwell[i].is_finite() && dwell[i] > 0.0 {
+                (1.0 - CHAIN_STEP / dwell[i].max(CHAIN_STEP)).max(0.0)
+            } else if dwell[i] == f32::INFINITY {
+                1.0
+            } else {
+                return Err(MarkovError::Negative {
+                    row: Some(i),
+                    column: i,
+                    value: dwell[i],
+                });
+            };
+            let weights: f32 = next[i][i + 1..].iter().filter(|w| **w > 0.0).sum();
+            if weights > 0.0 && weights.is_finite() {
+                transitions[i][i] = stay;
+                for j in i + 1..6 {
+                    transitions[i][j] = (1.0 - stay) * next[i][j].max(0.0) / weights;
+                }
+            } else {
+                transitions[i][i] = 1.0;
+            }
+        }
+        let total: f32 = initial.iter().filter(|p| **p > 0.0).sum();
+        let initial = if total > 0.0 && total.is_finite() {
+            initial.map(|p| p.max(0.0) / total)
+        } else {
+            initial
+        };
+        Self::new(initial, transitions)
     }
 
     /// Where falls start.
@@ -137,6 +207,7 @@ impl MarkovChain {
             main,
             initial: collapse(&self.initial),
             rows,
+            step: self.step,
         }
     }
 }
@@ -153,6 +224,7 @@ pub struct BoundedChain {
     main: PrimitiveMotion,
     initial: [f32; 6],
     rows: [[f32; 6]; 6],
+    step: f32,
 }
 
 impl BoundedChain {
@@ -166,10 +238,39 @@ impl BoundedChain {
         draw(&self.initial, rng.uniform())
     }
 
-    /// Draws the motion after `current` (never lower, never above `main`).
+    /// Draws the motion one chain step after `current` (never lower, never above `main`).
     pub fn next(&self, current: PrimitiveMotion, rng: &mut FallRng) -> PrimitiveMotion {
         let current = current.min(self.main);
         draw(&self.rows[current.index()], rng.uniform()).max(current)
+    }
+
+    /// Draws the motion after a piece of `seconds` in `current`: it leaves with probability
+    /// 1 − p_ii^(seconds / step), to the others in proportion to their p_ij.
+    pub fn next_after(
+        &self,
+        current: PrimitiveMotion,
+        seconds: f32,
+        rng: &mut FallRng,
+    ) -> PrimitiveMotion {
+        let current = current.min(self.main);
+        let row = &self.rows[current.index()];
+        // Nothing below the diagonal: the cumulative row at i is p_ii (−1 marks a zero).
+        let stay = row[current.index()].clamp(0.0, 1.0);
+        if stay >= 1.0 {
+            return current;
+        }
+        let steps = if seconds.is_finite() {
+            (seconds / self.step).max(0.0)
+        } else {
+            1.0
+        };
+        let u = rng.uniform();
+        if u < stay.powf(steps) {
+            return current;
+        }
+        // Among the others, in proportion to p_ij: a uniform draw over the leaving share.
+        let target = stay + rng.uniform() * (1.0 - stay);
+        draw(row, target.min(1.0 - f32::EPSILON)).max(current)
     }
 }
 

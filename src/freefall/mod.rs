@@ -7,10 +7,11 @@
 //! | phase diagram | (Re, I*) → main motion L1..L6 ([`PHASE_DIAGRAM`]) | §2.1, Fig. 3 |
 //! | database | swings of eq. 5 cut at turning points, k-means on feature vectors, angles from eq. 4 by RK4 | §2.2 |
 //! | search tree | glide left / right: fluttering, chaotic (r ∈ [1/10, 10]), tumbling | §2.3.1, Fig. 7 |
-//! | unified function | steady descent, helix, spiral | eq. 6 |
-//! | amplitudes | A₀ = D U / (h Ω) | eq. 7–8 |
-//! | Markov chain | L_i → L_j, j ≥ i, bounded by the main motion | §3, eq. 9 |
-//! | wind | p ← p + u(p) dt + Δf, Bézier-smoothed; tilt θ = W N(t) | §4.2, eq. 15 |
+//! | unified function | steady descent, helix (eight-petal rose), spiral (radius A₀) | eq. 6 |
+//! | amplitudes | A₀ = D U / (h Ω), Gaussian spread per motion | eq. 7–8, §2.3.2 |
+//! | Markov chain | L_i → L_j, j ≥ i, bounded by the main motion, per object | §3, eq. 9 |
+//! | wind | p ← p + v dt + Δf, v relaxing to u(p) over a response time; tilt θ = W N(t) | §4.2, eq. 15 |
+//! | presets | coin, paper, leaves, card, samara with their chains | [`FallPreset`] |
 //!
 //! | quantity | unit |
 //! |---|---|
@@ -32,21 +33,25 @@ mod motion;
 pub mod ode;
 mod path;
 mod plugin;
+mod presets;
 mod random;
 mod regime;
 
-pub use database::{DatabaseConfig, SEGMENT_SAMPLES, Segment, TrajectoryDatabase, kmeans};
+pub use database::{
+    CANDIDATES, DatabaseConfig, FEATURES, Feature, MAX_DATABASE_PARAMETER, SEGMENT_SAMPLES,
+    Segment, TrajectoryDatabase,
+};
 #[cfg(feature = "gizmos")]
 pub use gizmos::{FallGizmos, FallGizmosPlugin, FallTrail, motion_color};
-pub use markov::{BoundedChain, MarkovChain, MarkovError, motion_class_count};
+pub use markov::{BoundedChain, CHAIN_STEP, MarkovChain, MarkovError, motion_class_count};
 pub use model::FallModel;
 pub use motion::{
-    CHAOTIC_SCALE, FallScales, Glide, MIN_PIECE, MOTION_SHAPES, MotionShape, Piece, next_glide,
+    CHAOTIC_MIN_TIME, CHAOTIC_SCALE, FallScales, Glide, MIN_PIECE, Piece, STROUHAL, SwingChoice,
+    next_glide,
 };
-pub use path::{FallPath, StepOutcome, WindTilt};
-pub use plugin::{
-    FallModelBuildTime, FallState, FallingObject, FreeFallPlugin, FreeFallSettings, Landed,
-};
+pub use path::{FallPath, FallRelease, StepOutcome, WindTilt};
+pub use plugin::{FallState, FallingObject, FreeFallPlugin, FreeFallSettings, Landed};
+pub use presets::FallPreset;
 pub use random::FallRng;
 pub use regime::{
     Fluid, FreeFallError, MAX_DENSITY_RATIO, MAX_SIZE, MIN_SIZE, PHASE_DIAGRAM, PhaseRegion,

@@ -1,5 +1,7 @@
 //! What every fall shares: the trajectory database and the Markov chain.
 
+use std::sync::Arc;
+
 use bevy::ecs::resource::Resource;
 
 use super::database::TrajectoryDatabase;
@@ -13,7 +15,7 @@ use super::regime::PrimitiveMotion;
 pub struct FallModel {
     database: TrajectoryDatabase,
     chain: MarkovChain,
-    bounded: [BoundedChain; 6],
+    bounded: [Arc<BoundedChain>; 6],
 }
 
 impl Default for FallModel {
@@ -28,7 +30,7 @@ impl FallModel {
         Self {
             database,
             chain,
-            bounded: PrimitiveMotion::ALL.map(|main| chain.bounded(main)),
+            bounded: PrimitiveMotion::ALL.map(|main| Arc::new(chain.bounded(main))),
         }
     }
 
@@ -42,14 +44,19 @@ impl FallModel {
         &self.chain
     }
 
-    /// Replaces the chain; falls in the air continue with the new one.
+    /// Replaces the chain; falls released from now on follow it.
     pub fn set_chain(&mut self, chain: MarkovChain) {
         self.chain = chain;
-        self.bounded = PrimitiveMotion::ALL.map(|main| chain.bounded(main));
+        self.bounded = PrimitiveMotion::ALL.map(|main| Arc::new(chain.bounded(main)));
     }
 
     /// The chain limited to L1..`main`.
     pub fn bounded(&self, main: PrimitiveMotion) -> &BoundedChain {
         &self.bounded[main.index()]
+    }
+
+    /// The chain limited to L1..`main`, shared (what a [`FallPath`](super::FallPath) holds).
+    pub fn bounded_shared(&self, main: PrimitiveMotion) -> Arc<BoundedChain> {
+        Arc::clone(&self.bounded[main.index()])
     }
 }

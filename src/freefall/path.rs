@@ -1,21 +1,31 @@
 //! One fall through time: the Markov chain picks primitive motions, pieces give the still-fluid
-//! path f(t), the wind carries it (§4.2), Bézier curves smooth what is shown.
+//! path f(t), the fluid carries it (§4.2) through a response time, Bézier curves smooth what is
+//! shown.
 
 use std::f32::consts::{PI, TAU};
+use std::sync::Arc;
 
 use bevy::math::cubic_splines::CubicSegment;
 use bevy::math::{Quat, Vec3};
 
 use super::database::TrajectoryDatabase;
+use super::markov::BoundedChain;
 use super::model::FallModel;
-use super::motion::{FallScales, Glide, Piece, next_glide};
+use super::motion::{FallScales, Glide, Piece, SwingChoice, next_glide, sin_cos_small};
 use super::random::FallRng;
 use super::regime::PrimitiveMotion;
 
 /// Most pieces one step may cross; the rest of a huge step falls straight at U.
 const MAX_PIECES_PER_STEP: u32 = 64;
-/// Motion changes blend position increments and orientation over this share of a swing.
+/// Motion changes that switch between swings and eq. 6 blend position increments and
+/// orientation over this share of a swing ...
 const BLEND_SWINGS: f32 = 0.35;
+/// ... and at least this long, s, so a blend spans several frames of any frame rate.
+const MIN_BLEND: f32 = 0.15;
+/// The release orientation fades into the synthesised one over this many swings ...
+const RELEASE_SWINGS: f32 = 1.0;
+/// ... and at least this long, s.
+const MIN_RELEASE: f32 = 0.25;
 
 /// How the wind turns the object (eq. 15): θ = W N(t), leaning downwind. The paper's N(t) is
 /// the fBm wind speed |u|; as an angle factor it must be bounded, so N = x / (1 + x) with
@@ -32,6 +42,11 @@ pub struct WindTilt {
 impl WindTilt {
     /// The rotation that leans the object downwind.
     pub fn rotation(&self, wind: Vec3) -> Quat {
+        self.scaled_rotation(wind, 1.0)
+    }
+
+    /// [`WindTilt::rotation`] with its angle times `factor` ∈ [0, 1].
+    fn scaled_rotation(&self, wind: Vec3, factor: f32) -> Quat {
         let (x, z) = (wind.x, wind.z);
         let horizontal = (x * x + z * z).sqrt();
         let speed = wind.length();
@@ -39,30 +54,12 @@ impl WindTilt {
             return Quat::IDENTITY;
         }
         let ratio = speed / self.reference_speed.max(1e-3);
-        let half = 0.5 * self.max_angle.clamp(-PI, PI) * (ratio / (1.0 + ratio));
+        let half = 0.5 * factor * self.max_angle.clamp(-PI, PI) * (ratio / (1.0 + ratio));
         // Axis Y × horizontal = (z, 0, −x) / |horizontal|.
-        let (sin, cos) = sin_cos_quarter_turn(half);
+        let (sin, cos) = sin_cos_small(half);
         let k = sin / horizontal;
         Quat::from_xyzw(z * k, 0.0, -x * k, cos)
     }
-}
-
-/// sin and cos of |x| ≤ π/2 by their Taylor series to x¹⁰ (error < 4e-6): no range reduction
-/// and no library call on the per-object hot path.
-fn sin_cos_quarter_turn(x: f32) -> (f32, f32) {
-    // Horner form with the factorials' reciprocals as constants (multiplications, no divisions).
-    const S: [f32; 4] = [1.0 / 6.0, 1.0 / 120.0, 1.0 / 5040.0, 1.0 / 362_880.0];
-    const C: [f32; 5] = [
-        1.0 / 2.0,
-        1.0 / 24.0,
-        1.0 / 720.0,
-        1.0 / 40_320.0,
-        1.0 / 3_628_800.0,
-    ];
-    let x2 = x * x;
-    let sin = x * (1.0 - x2 * (S[0] - x2 * (S[1] - x2 * (S[2] - x2 * S[3]))));
-    let cos = 1.0 - x2 * (C[0] - x2 * (C[1] - x2 * (C[2] - x2 * (C[3] - x2 * C[4]))));
-    (sin, cos)
 }
 
 /// The piece a motion change blends away from: its time and offset run on past its end.
@@ -72,6 +69,42 @@ struct Blend {
     time: f32,
     offset: Vec3,
     elapsed: f32,
+    length: f32,
+}
+
+/// The part of the release orientation the synthesis does not reproduce, fading out.
+#[derive(Clone, Copy, Debug)]
+struct ReleaseFade {
+    residual: Quat,
+    elapsed: f32,
+    length: f32,
+}
+
+/// Where and how an object is let go.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FallRelease {
+    /// Position, m.
+    pub position: Vec3,
+    /// Orientation: the plate in the local XZ plane with its long axis along local Z (the axis
+    /// it tumbles about). `None`: flat, with a heading drawn from the seed.
+    pub rotation: Option<Quat>,
+    /// Velocity of the part of the motion that follows the fluid, m/s (0 from a hand; a fall
+    /// released again in mid-air keeps its own).
+    pub velocity: Vec3,
+    /// Height of the ground, m.
+    pub ground: f32,
+}
+
+impl FallRelease {
+    /// Let go at rest at `position`, flat, with a heading from the seed.
+    pub fn at(position: Vec3, ground: f32) -> Self {
+        Self {
+            position,
+            rotation: None,
+            velocity: Vec3::ZERO,
+            ground,
+        }
+    }
 }
 
 /// What a step did.
@@ -89,21 +122,30 @@ pub enum StepOutcome {
 #[derive(Clone, Debug)]
 pub struct FallPath {
     scales: FallScales,
-    main: PrimitiveMotion,
+    chain: Arc<BoundedChain>,
     rng: FallRng,
     motion: PrimitiveMotion,
+    /// A₀ of the current motion with its Gaussian draw (§2.3.2), m.
+    amplitude: f32,
     yaw: Quat,
     glide: Glide,
+    /// No swing yet: the first one reverses nothing.
+    fresh: bool,
     piece: Piece,
     piece_time: f32,
     /// `piece.sample(piece_time)`, kept so each step evaluates the piece once.
     piece_offset: Vec3,
     piece_tilt: Quat,
-    /// The database cluster of the current planar motion's swings.
-    cluster: u16,
+    /// Sideways position along the heading, m, and the centre the swings go round (moved on by
+    /// half-turns, which drift).
+    lateral: f32,
+    centre: f32,
     /// The piece before a motion change, while the change blends (boxed: rare, and a small
     /// path keeps ten thousand of them in cache).
     previous: Option<Box<Blend>>,
+    release: Option<Box<ReleaseFade>>,
+    /// Velocity of the fluid-following part, m/s.
+    drift: Vec3,
     still: Vec3,
     /// Control points p_{i−2}, p_{i−1}, p_i.
     points: [Vec3; 3],
@@ -111,12 +153,13 @@ pub struct FallPath {
     orientations: [Quat; 2],
     ground: f32,
     landed: bool,
-    time: f32,
+    time: f64,
     markov_steps: u32,
 }
 
 impl FallPath {
-    /// A fall with main motion `main` released at `position` that lands at height `ground`.
+    /// A fall with main motion `main` and the model's chain, let go at rest at `position`,
+    /// flat, with a heading from the seed, landing at height `ground`.
     pub fn new(
         model: &FallModel,
         scales: FallScales,
@@ -125,40 +168,97 @@ impl FallPath {
         position: Vec3,
         ground: f32,
     ) -> Self {
+        Self::release(
+            model,
+            scales,
+            model.bounded_shared(main),
+            seed,
+            FallRelease::at(position, ground),
+        )
+    }
+
+    /// A fall following `chain` (bounded by its main motion), let go as `release` says.
+    ///
+    /// The release orientation is kept: the plate's long axis sets the heading (it glides
+    /// across it), its pitch about that axis is the first swing's start angle, and whatever
+    /// else it has (a roll, a tilt the first motion does not have) fades out over a swing.
+    pub fn release(
+        model: &FallModel,
+        scales: FallScales,
+        chain: Arc<BoundedChain>,
+        seed: u64,
+        release: FallRelease,
+    ) -> Self {
         let db = model.database();
         let mut rng = FallRng::new(seed);
-        let motion = model.bounded(main).start(&mut rng);
-        let yaw = Quat::from_rotation_y(rng.uniform() * TAU);
+        let motion = chain.start(&mut rng);
+        let random_yaw = rng.uniform() * TAU;
         let glide = if rng.coin() {
             Glide::Left
         } else {
             Glide::Right
         };
+        let rotation = release
+            .rotation
+            .filter(|q| q.is_finite() && q.length_squared() > 1e-12)
+            .map(Quat::normalize);
+        let (yaw, theta) = match rotation {
+            Some(q) => heading_and_pitch(q, random_yaw),
+            None => (Quat::from_rotation_y(random_yaw), 0.0),
+        };
+        let position = if release.position.is_finite() {
+            release.position
+        } else {
+            Vec3::ZERO
+        };
+        let drift = if release.velocity.is_finite() {
+            release.velocity
+        } else {
+            Vec3::ZERO
+        };
         let mut path = Self {
             scales,
-            main,
+            chain,
             rng,
             motion,
+            amplitude: 0.0,
             yaw,
             glide,
-            piece: Piece::curve(&scales, PrimitiveMotion::SteadyDescent, 0.0),
+            fresh: true,
+            piece: Piece::curve(&scales, PrimitiveMotion::SteadyDescent, 0.0, 0.0, 0.0),
             piece_time: 0.0,
             piece_offset: Vec3::ZERO,
             piece_tilt: Quat::IDENTITY,
-            cluster: 0,
+            lateral: 0.0,
+            centre: 0.0,
             previous: None,
+            release: None,
+            drift,
             still: Vec3::ZERO,
             points: [position; 3],
             orientations: [yaw; 2],
-            ground,
+            ground: release.ground,
             landed: false,
             time: 0.0,
             markov_steps: 0,
         };
-        path.cluster = db.nearest_cluster(scales.swing_feature(motion)) as u16;
-        path.piece = path.build_piece(db, None);
+        path.motion = PrimitiveMotion::SteadyDescent;
+        path.enter_motion(motion);
+        path.piece = path.build_piece(db, theta, 1.0, None);
         path.piece_tilt = path.piece.tilt(db, 0.0);
-        path.orientations = [path.yaw * path.piece_tilt; 2];
+        let synthesised = path.yaw * path.piece_tilt;
+        let shown = match rotation {
+            Some(q) => {
+                path.release = Some(Box::new(ReleaseFade {
+                    residual: (q * synthesised.inverse()).normalize(),
+                    elapsed: 0.0,
+                    length: (RELEASE_SWINGS * scales.swing_time()).max(MIN_RELEASE),
+                }));
+                q
+            }
+            None => synthesised,
+        };
+        path.orientations = [shown; 2];
         path
     }
 
@@ -167,8 +267,10 @@ impl FallPath {
         self.markov_steps
     }
 
-    /// Advances by `dt` seconds: p ← p + u dt + Δf (§4.2), with `wind` the velocity at the
-    /// current position (zero in still fluid), and `tilt` the wind's turn of eq. 15.
+    /// Advances by `dt` seconds: p ← p + v dt + Δf (§4.2), where v, the velocity of the part of
+    /// the motion the fluid carries, relaxes toward `wind` (the fluid's velocity at the current
+    /// position; zero in still fluid) over [`FallScales::response_time`], and Δf is the still-fluid
+    /// path's increment; `tilt` is the wind's turn of eq. 15.
     pub fn advance(
         &mut self,
         model: &FallModel,
@@ -184,16 +286,20 @@ impl FallPath {
         }
         let dt = if dt.is_finite() { dt.max(0.0) } else { 0.0 };
         let wind = if wind.is_finite() { wind } else { Vec3::ZERO };
-        let delta = self.still_step(model, dt);
-        self.time += dt;
+        let delta = self.still_step(model, dt, wind);
+        self.time += f64::from(dt);
         self.still += delta;
-        let mut next = self.points[2] + wind * dt + delta;
+        // Backward Euler on dv/dt = (u − v) / τ: never past the wind, stable at any step.
+        let slip = wind - self.drift;
+        let k = dt / self.scales.response_time(slip.length());
+        self.drift += slip * (k / (1.0 + k));
+        let mut next = self.points[2] + self.drift * dt + delta;
         let landed = next.y <= self.ground;
         if landed {
             next.y = self.ground;
+            self.drift = Vec3::ZERO;
         }
-        let orientation =
-            (tilt.rotation(wind) * self.orientation_now(model.database())).normalize();
+        let orientation = self.orientation_now(model.database(), wind, tilt, dt);
         self.points = [self.points[1], self.points[2], next];
         self.orientations = [self.orientations[1], orientation];
         if landed {
@@ -205,7 +311,7 @@ impl FallPath {
     }
 
     /// Still-fluid displacement over `dt`, crossing pieces as needed.
-    fn still_step(&mut self, model: &FallModel, dt: f32) -> Vec3 {
+    fn still_step(&mut self, model: &FallModel, dt: f32, wind: Vec3) -> Vec3 {
         let db = model.database();
         // The usual step: inside one piece, no blend.
         if self.previous.is_none() && self.piece_time + dt < self.piece.duration() {
@@ -214,11 +320,11 @@ impl FallPath {
             let inc = end - self.piece_offset;
             self.piece_offset = end;
             self.piece_tilt = tilt;
+            self.lateral += inc.x;
             return self.yaw * inc;
         }
         let mut remaining = dt;
         let mut delta = Vec3::ZERO;
-        let blend = BLEND_SWINGS * self.scales.swing_time();
         let mut crossed = 0;
         while remaining > 0.0 && crossed < MAX_PIECES_PER_STEP {
             let left = (self.piece.duration() - self.piece_time).max(0.0);
@@ -228,21 +334,22 @@ impl FallPath {
             self.piece_offset = end;
             self.piece_tilt = tilt;
             if let Some(old) = self.previous.as_mut() {
-                let w = smoothstep((old.elapsed + 0.5 * h) / blend);
+                let w = smoothstep((old.elapsed + 0.5 * h) / old.length);
                 let old_end = old.piece.offset(db, old.time + h);
                 inc = (old_end - old.offset).lerp(inc, w);
                 old.offset = old_end;
                 old.time += h;
                 old.elapsed += h;
-                if old.elapsed >= blend {
+                if old.elapsed >= old.length {
                     self.previous = None;
                 }
             }
+            self.lateral += inc.x;
             delta += self.yaw * inc;
             self.piece_time += h;
             remaining -= h;
             if self.piece_time >= self.piece.duration() {
-                self.next_piece(model);
+                self.next_piece(model, wind);
                 crossed += 1;
             }
         }
@@ -252,71 +359,139 @@ impl FallPath {
         delta
     }
 
-    fn next_piece(&mut self, model: &FallModel) {
+    /// The Markov step at the end of a piece (§3.2), then the next piece.
+    fn next_piece(&mut self, model: &FallModel, wind: Vec3) {
         let db = model.database();
-        let next = model.bounded(self.main).next(self.motion, &mut self.rng);
-        self.markov_steps += 1;
         let old = self.piece;
-        if next != self.motion {
+        let next = self
+            .chain
+            .next_after(self.motion, old.duration(), &mut self.rng);
+        self.markov_steps += 1;
+        let changed = next != self.motion;
+        if changed {
+            self.enter_motion(next);
+        }
+        let theta = old.end_angle();
+        let survival = self
+            .scales
+            .tumble_survival((wind.x * wind.x + wind.z * wind.z).sqrt());
+        self.piece = self.build_piece(db, theta, survival, Some(old));
+        if changed && !(old_is_planar(&old) && self.motion.is_planar()) {
             self.previous = Some(Box::new(Blend {
                 piece: old,
                 time: self.piece_time,
                 offset: self.piece_offset,
                 elapsed: 0.0,
+                length: (BLEND_SWINGS * self.scales.swing_time()).max(MIN_BLEND),
             }));
         }
-        if next != self.motion {
-            self.cluster = db.nearest_cluster(self.scales.swing_feature(next)) as u16;
-        }
-        self.motion = next;
-        self.piece = self.build_piece(db, Some(old));
         self.piece_time = 0.0;
         self.piece_offset = Vec3::ZERO;
         self.piece_tilt = self.piece.tilt(db, 0.0);
     }
 
-    fn build_piece(&mut self, db: &TrajectoryDatabase, old: Option<Piece>) -> Piece {
-        let theta0 = old.map_or(0.0, |p| p.end_angle(db));
+    /// A new motion: its amplitude with the Gaussian spread; swings go round where it is.
+    fn enter_motion(&mut self, motion: PrimitiveMotion) {
+        if !(motion.is_planar() && self.motion.is_planar()) {
+            self.centre = self.lateral;
+        }
+        self.motion = motion;
+        self.amplitude = self.scales.spread_amplitude(motion, &mut self.rng);
+    }
+
+    fn build_piece(
+        &mut self,
+        db: &TrajectoryDatabase,
+        theta: f32,
+        survival: f32,
+        old: Option<Piece>,
+    ) -> Piece {
         if self.motion.is_planar() {
             let (glide, r) = next_glide(self.motion, self.glide, &mut self.rng);
+            let same_side = !self.fresh && glide == self.glide;
+            self.fresh = false;
             self.glide = glide;
-            return Piece::swing(
-                db,
-                usize::from(self.cluster),
-                &self.scales,
-                self.motion,
+            let choice = SwingChoice {
                 glide,
+                same_side,
                 r,
-                theta0,
-                &mut self.rng,
-            );
+                theta,
+                survival,
+            };
+            // The search key (§2.3.1): the glide to the next turning point, r A₀ to the other
+            // side of the centre (A_e = r A₀), or on by 2 r A₀ for a half-turn, which drifts.
+            let reach = r * self.amplitude;
+            let glide_to = if same_side {
+                self.centre += glide.sign() * 2.0 * reach;
+                2.0 * reach
+            } else {
+                // Past the turning point already (a long previous swing): a short swing back.
+                ((self.centre + glide.sign() * reach - self.lateral) * glide.sign()).max(0.0)
+            };
+            let key = self.scales.swing_key(glide_to, choice.swings(same_side));
+            let segment = db.find(&key, &mut self.rng);
+            return Piece::swing(db, &self.scales, segment, choice);
         }
+        let flip = PI * (theta / PI).round();
         match old {
             // The same curve carries on from where it was.
             Some(Piece::Curve {
                 start, duration, ..
-            }) if self.previous.is_none() => {
-                Piece::curve(&self.scales, self.motion, start + duration)
+            }) if old.is_some_and(|p| p.end_angle() == flip) && !self.curve_changed(&old) => {
+                Piece::curve(
+                    &self.scales,
+                    self.motion,
+                    self.amplitude,
+                    start + duration,
+                    flip,
+                )
             }
             _ => {
-                let phase = self.rng.uniform() * TAU / (self.scales.swing_rate * 0.5).max(1e-6);
-                Piece::curve(&self.scales, self.motion, phase)
+                let phase = self.rng.uniform() * TAU / (self.scales.swing_rate * 0.25).max(1e-6);
+                Piece::curve(&self.scales, self.motion, self.amplitude, phase, flip)
             }
         }
     }
 
-    fn orientation_now(&self, db: &TrajectoryDatabase) -> Quat {
-        let tilt = self.piece_tilt;
-        let tilt = match &self.previous {
-            Some(old) => {
-                let blend = BLEND_SWINGS * self.scales.swing_time();
-                old.piece
-                    .tilt(db, old.time)
-                    .slerp(tilt, smoothstep(old.elapsed / blend))
-            }
-            None => tilt,
+    /// Whether the last piece was a curve of another motion.
+    fn curve_changed(&self, old: &Option<Piece>) -> bool {
+        let Some(Piece::Curve {
+            eccentricity,
+            lobes,
+            ..
+        }) = old
+        else {
+            return true;
         };
-        self.yaw * tilt
+        let fresh = Piece::curve(&self.scales, self.motion, self.amplitude, 0.0, 0.0);
+        !matches!(fresh, Piece::Curve { eccentricity: e, lobes: l, .. } if e == *eccentricity && l == *lobes)
+    }
+
+    fn orientation_now(
+        &mut self,
+        db: &TrajectoryDatabase,
+        wind: Vec3,
+        tilt: &WindTilt,
+        dt: f32,
+    ) -> Quat {
+        let piece = match &self.previous {
+            Some(old) => old
+                .piece
+                .tilt(db, old.time)
+                .slerp(self.piece_tilt, smoothstep(old.elapsed / old.length)),
+            None => self.piece_tilt,
+        };
+        let synthesised = self.yaw * piece;
+        let Some(release) = self.release.as_mut() else {
+            return (tilt.rotation(wind) * synthesised).normalize();
+        };
+        release.elapsed += dt;
+        let w = smoothstep(release.elapsed / release.length);
+        let residual = release.residual.slerp(Quat::IDENTITY, w);
+        if w >= 1.0 {
+            self.release = None;
+        }
+        (tilt.scaled_rotation(wind, w) * residual * synthesised).normalize()
     }
 
     /// The shown pose a fraction `s` ∈ [0, 1] of a step after the second-to-last control point:
@@ -350,6 +525,11 @@ impl FallPath {
         self.orientations[1].normalize()
     }
 
+    /// The velocity of the fluid-following part of the motion, m/s.
+    pub fn drift(&self) -> Vec3 {
+        self.drift
+    }
+
     /// f(t): the still-fluid displacement since release.
     pub fn still_displacement(&self) -> Vec3 {
         self.still
@@ -362,12 +542,27 @@ impl FallPath {
 
     /// The chain's bound: the main motion from the phase diagram.
     pub fn main_motion(&self) -> PrimitiveMotion {
-        self.main
+        self.chain.main()
     }
 
-    /// Seconds since release.
+    /// The current piece of the still-fluid path.
+    pub fn piece(&self) -> &Piece {
+        &self.piece
+    }
+
+    /// A₀ of the current motion, with its Gaussian draw, m.
+    pub fn amplitude(&self) -> f32 {
+        self.amplitude
+    }
+
+    /// The heading: the rotation about +Y whose local +X the swings glide along.
+    pub fn heading(&self) -> Quat {
+        self.yaw
+    }
+
+    /// Seconds since release (summed in f64).
     pub fn time(&self) -> f32 {
-        self.time
+        self.time as f32
     }
 
     /// True once on the ground.
@@ -381,6 +576,25 @@ impl FallPath {
     }
 }
 
+fn old_is_planar(piece: &Piece) -> bool {
+    matches!(piece, Piece::Swing { .. })
+}
+
+/// The heading (a rotation about +Y) whose frame has the plate's long axis (local Z) as its z,
+/// and the plate's pitch about that axis. A long axis pointing straight up or down gives no
+/// heading: `fallback` (an angle about Y) is used.
+fn heading_and_pitch(rotation: Quat, fallback: f32) -> (Quat, f32) {
+    let long = rotation * Vec3::Z;
+    let horizontal = bevy::math::Vec2::new(long.x, long.z);
+    let yaw = if horizontal.length_squared() > 1e-6 {
+        Quat::from_rotation_y(horizontal.x.atan2(horizontal.y))
+    } else {
+        Quat::from_rotation_y(fallback)
+    };
+    let chord = yaw.inverse() * (rotation * Vec3::X);
+    (yaw, chord.y.atan2(chord.x))
+}
+
 fn smoothstep(x: f32) -> f32 {
     let x = x.clamp(0.0, 1.0);
     x * x * (3.0 - 2.0 * x)
@@ -389,18 +603,6 @@ fn smoothstep(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn quarter_turn_series_is_accurate() {
-        for i in 0..=1000 {
-            let x = -PI / 2.0 + PI * i as f32 / 1000.0;
-            let (s, c) = sin_cos_quarter_turn(x);
-            assert!(
-                (s - x.sin()).abs() < 4e-6 && (c - x.cos()).abs() < 4e-6,
-                "{x}"
-            );
-        }
-    }
 
     #[test]
     fn wind_tilt_leans_downwind_by_w_n() {
@@ -415,5 +617,14 @@ mod tests {
         assert!((q.length() - 1.0).abs() < 1e-5);
         assert_eq!(tilt.rotation(Vec3::ZERO), Quat::IDENTITY);
         assert_eq!(tilt.rotation(Vec3::NAN), Quat::IDENTITY);
+    }
+
+    #[test]
+    fn heading_follows_the_long_axis() {
+        // Long axis (local Z) turned to world +X: the plate glides along ±Z.
+        let q = Quat::from_rotation_y(std::f32::consts::FRAC_PI_2) * Quat::from_rotation_z(0.3);
+        let (yaw, pitch) = heading_and_pitch(q, 0.0);
+        assert!(((yaw * Quat::from_rotation_z(pitch)).dot(q)).abs() > 1.0 - 1e-5);
+        assert!((pitch - 0.3).abs() < 1e-5, "{pitch}");
     }
 }

@@ -1,8 +1,7 @@
 //! ECS glue: [`FallingObject`], its runtime [`FallState`], the [`Landed`] message and the
 //! [`FreeFallPlugin`].
 
-use std::sync::{Mutex, PoisonError};
-use std::time::Instant;
+use std::sync::{Arc, Mutex, PoisonError};
 
 use bevy::app::{App, FixedUpdate, Plugin, PostUpdate};
 use bevy::ecs::prelude::*;
@@ -12,19 +11,23 @@ use bevy::time::{Fixed, Time};
 use bevy::transform::TransformSystems;
 use bevy::transform::components::Transform;
 
+use super::markov::MarkovChain;
 use super::model::FallModel;
-use super::motion::FallScales;
-use super::path::{FallPath, StepOutcome, WindTilt};
+use super::motion::{FallScales, STROUHAL};
+use super::path::{FallPath, FallRelease, StepOutcome, WindTilt};
 use super::regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape, regime};
 use crate::WindfallSystems;
 use crate::wind::WindField;
 
 /// A leaf, a sheet of paper, a coin: anything thin that falls through air or water.
 ///
-/// It falls from where its [`Transform`] is when the component is added (released in the
-/// frame's `PostUpdate`, moved from the next fixed step on). Change it (for example `seed += 1`)
-/// to release it again from its current transform. An invalid description leaves a
-/// [`FallState`] with [`FallState::error`] set and the entity still.
+/// It falls from where its [`Transform`] is, turned as it is, when the component is added
+/// (released in the frame's `PostUpdate`, moved from the next fixed step on). The plate lies in
+/// the entity's local XZ plane with its long axis along local Z (the axis it tumbles about).
+/// Change it (for example `seed += 1`) to release it again from its current transform; a fall
+/// released in mid-air keeps its velocity. An invalid description leaves a [`FallState`] with
+/// [`FallState::error`] set and the entity still. [`FallPreset`](super::FallPreset) has real
+/// objects.
 #[derive(Component, Clone, Debug, PartialEq, Reflect)]
 #[require(Transform, FallState)]
 pub struct FallingObject {
@@ -44,6 +47,8 @@ pub struct FallingObject {
     pub deviation: f32,
     /// W of eq. 15: the largest tilt the wind gives, rad.
     pub wind_tilt: f32,
+    /// The Markov chain of its motions (`None`: the [`FallModel`]'s).
+    pub markov: Option<MarkovChain>,
 }
 
 impl Default for FallingObject {
@@ -62,6 +67,7 @@ impl Default for FallingObject {
             main_motion: None,
             deviation: 1.0,
             wind_tilt: 0.6,
+            markov: None,
         }
     }
 }
@@ -90,15 +96,35 @@ impl FallingObject {
         Ok(r)
     }
 
-    /// The sizes of its fall (U, Ω = U / a, L, k).
+    /// The sizes of its fall (U, Ω = 2π St U / a, L, a, k, ℓ = ρ_s b / ρ_f, I*).
     pub fn scales(&self, regime: &Regime) -> FallScales {
-        let (length, chord, _) = self.shape.lengths();
+        let (length, chord, thickness) = self.shape.lengths();
         FallScales {
             descent_speed: regime.descent_speed,
-            swing_rate: (regime.descent_speed / chord).max(1e-6),
+            swing_rate: (std::f32::consts::TAU * STROUHAL * regime.descent_speed / chord).max(1e-6),
             length,
+            chord,
             deviation: self.deviation,
+            drag_length: (f64::from(self.density) * f64::from(thickness)
+                / f64::from(self.fluid.density)) as f32,
+            inertia: regime.inertia,
         }
+    }
+
+    /// Its fall let go as `release` says, with its own chain or the model's.
+    pub fn path(&self, model: &FallModel, release: FallRelease) -> Result<FallPath, FreeFallError> {
+        let regime = self.regime()?;
+        let chain = match &self.markov {
+            Some(chain) => Arc::new(chain.bounded(regime.main)),
+            None => model.bounded_shared(regime.main),
+        };
+        Ok(FallPath::release(
+            model,
+            self.scales(&regime),
+            chain,
+            self.seed,
+            release,
+        ))
     }
 }
 
@@ -155,10 +181,6 @@ pub struct FreeFallSettings {
     pub ground_height: f32,
 }
 
-/// How long building the [`FallModel`] took when the plugin was added, s.
-#[derive(Resource, Clone, Copy, Debug)]
-pub struct FallModelBuildTime(pub f32);
-
 /// Moves every [`FallingObject`] on the fixed timestep and poses it once per frame.
 #[derive(Default)]
 pub struct FreeFallPlugin;
@@ -167,10 +189,7 @@ impl Plugin for FreeFallPlugin {
     fn build(&self, app: &mut App) {
         crate::configure_sets(app);
         if !app.world().contains_resource::<FallModel>() {
-            let start = Instant::now();
-            let model = FallModel::default();
-            app.insert_resource(FallModelBuildTime(start.elapsed().as_secs_f32()))
-                .insert_resource(model);
+            app.insert_resource(FallModel::default());
         }
         app.init_resource::<FreeFallSettings>()
             .add_message::<Landed>()
@@ -192,17 +211,22 @@ fn release_objects(
     model: Res<FallModel>,
 ) {
     for (object, transform, mut state) in &mut objects {
+        // A fall released again in mid-air keeps the velocity the fluid gave it.
+        let velocity = state
+            .path
+            .as_ref()
+            .filter(|p| !p.landed())
+            .map_or(Vec3::ZERO, FallPath::drift);
+        let release = FallRelease {
+            position: transform.translation,
+            rotation: Some(transform.rotation),
+            velocity,
+            ground: settings.ground_height,
+        };
         *state = match object.regime() {
             Ok(regime) => FallState {
                 regime: Some(regime),
-                path: Some(FallPath::new(
-                    &model,
-                    object.scales(&regime),
-                    regime.main,
-                    object.seed,
-                    transform.translation,
-                    settings.ground_height,
-                )),
+                path: object.path(&model, release).ok(),
                 error: None,
             },
             Err(error) => FallState {
