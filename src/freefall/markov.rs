@@ -139,8 +139,11 @@ impl MarkovChain {
 
     /// A chain from the mean time (s) a fall stays in each motion and where it goes next:
     /// `dwell[i]` seconds in L_i (infinite: it stays), `next[i]` the relative weights of the
-    /// motions after L_i (only those above i count). p_ii = 1 − step / dwell, the rest shared by
-    /// the weights. Errors as [`MarkovChain::new`] (a row with no weight above it must stay).
+    /// motions after L_i (only those above i count). p_ii = e^(−step / dwell), a rate of one
+    /// change per `dwell` seconds, the rest shared by the weights. Since changes happen where
+    /// pieces end, a motion whose pieces last d seconds is seen for d / (1 − e^(−d / dwell)) on
+    /// average (about dwell + d/2). Errors as [`MarkovChain::new`] (a row with no weight above
+    /// it must stay).
     pub fn from_dwell_times(
         initial: [f32; 6],
         dwell: [f32; 6],
@@ -149,7 +152,7 @@ impl MarkovChain {
         let mut transitions = [[0.0f32; 6]; 6];
         for i in 0..6 {
             let stay = if dwell[i].is_finite() && dwell[i] > 0.0 {
-                (1.0 - CHAIN_STEP / dwell[i].max(CHAIN_STEP)).max(0.0)
+                (-CHAIN_STEP / dwell[i]).exp()
             } else if dwell[i] == f32::INFINITY {
                 1.0
             } else {

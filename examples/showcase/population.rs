@@ -1,0 +1,55 @@
+//! The leaves of the showcase's tree: which kinds, where they are let go, and how they are
+//! turned. Shared with `tests/freefall_presets.rs`, which checks headlessly that this population
+//! shows at least four primitive motions at once.
+
+use std::f32::consts::TAU;
+
+use bevy::math::{Quat, Vec3};
+use bevy_windfall::freefall::{FallPreset, FallRng, FallingObject};
+
+/// Leaves on the tree.
+pub const LEAVES: usize = 400;
+/// Centre and radius of the canopy leaves fall from, m.
+pub const CANOPY: Vec3 = Vec3::new(0.0, 5.5, 0.0);
+pub const CANOPY_RADIUS: f32 = 2.2;
+
+/// The kinds of leaves, in turn: maple, oak, birch and the paper's leaf.
+pub const KINDS: [FallPreset; 4] = [
+    FallPreset::MapleLeaf,
+    FallPreset::OakLeaf,
+    FallPreset::BirchLeaf,
+    FallPreset::Leaf,
+];
+
+/// Leaf `i`: its kind's preset with seed `i`.
+pub fn leaf(i: usize) -> FallingObject {
+    FallingObject {
+        seed: i as u64,
+        ..KINDS[i % KINDS.len()].object()
+    }
+}
+
+/// Where leaves are let go, drawn from a seeded stream.
+pub struct Canopy(pub FallRng);
+
+impl Canopy {
+    /// A point in the lower half of the canopy.
+    pub fn point(&mut self) -> Vec3 {
+        let r = &mut self.0;
+        let angle = r.uniform() * TAU;
+        let radius = CANOPY_RADIUS * r.uniform().sqrt();
+        let height = CANOPY.y - 0.8 + 1.4 * r.uniform();
+        Vec3::new(
+            CANOPY.x + radius * angle.cos(),
+            height,
+            CANOPY.z + radius * angle.sin(),
+        )
+    }
+
+    /// How a leaf hangs when it lets go: any heading, tipped by up to 0.5 rad.
+    pub fn turn(&mut self) -> Quat {
+        let r = &mut self.0;
+        Quat::from_rotation_y(r.uniform() * TAU)
+            * Quat::from_rotation_x(0.5 * (2.0 * r.uniform() - 1.0))
+    }
+}
