@@ -1,6 +1,8 @@
 //! What every example scene shares: `--frames N`, `--screenshot PATH`, `--window WxH`.
 #![allow(dead_code)]
 
+pub mod leaf;
+
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -6,6 +6,7 @@ use std::collections::VecDeque;
 
 use bevy::prelude::*;
 use bevy_windfall::WindfallSystems;
+use bevy_windfall::freefall::FallPreset;
 use bevy_windfall::prelude::*;
 
 use super::{Featured, Scene, SceneInfo, place_camera};
@@ -39,17 +40,9 @@ struct Coin {
 #[derive(Component)]
 struct Resting(Timer);
 
-/// The paper's coin.
+/// The paper's coin (Fig. 15a): steady at first, then fluttering.
 pub fn coin() -> FallingObject {
-    FallingObject {
-        shape: Shape::Disk {
-            diameter: 0.02,
-            thickness: 0.0015,
-        },
-        density: 2700.0,
-        fluid: Fluid::WATER,
-        ..default()
-    }
+    FallPreset::Coin.object()
 }
 
 fn setup(

@@ -1,26 +1,23 @@
 //! Autumn leaves fall from a tree into gusty wind, land, rest and fall again. Most are
-//! procedural [`FallingObject`]s (phase diagram, Markov chain, trajectory database); a few
-//! yellow-green ones are physical [`AeroBody`] plates with per-face lift and drag.
-
-use std::f32::consts::{FRAC_PI_2, TAU};
+//! procedural [`FallingObject`]s of four kinds (maple, oak, birch and the paper's leaf, each a
+//! [`FallPreset`] with its own Markov chain); a few yellow-green ones are physical [`AeroBody`]
+//! plates with per-face lift and drag. The camera stands by the trunk, where leaves pass close.
 
 use bevy::prelude::*;
 use bevy_windfall::aero::{AeroState, PlateState};
-use bevy_windfall::freefall::{FallRng, PrimitiveMotion};
+use bevy_windfall::freefall::{FallPreset, FallRng, PrimitiveMotion};
 use bevy_windfall::prelude::*;
 
+use super::common::leaf::{Outline, leaf_mesh};
+use super::population::{CANOPY, Canopy, KINDS, LEAVES, leaf};
 use super::{Featured, Scene, SceneInfo, common, place_camera};
 
-const LEAVES: usize = 400;
-const PHYSICAL_LEAVES: usize = 40;
-/// Centre and radius of the canopy leaves fall from, m.
-const CANOPY: Vec3 = Vec3::new(0.0, 5.5, 0.0);
-const CANOPY_RADIUS: f32 = 2.2;
+const PHYSICAL_LEAVES: usize = 30;
 /// Seconds a leaf rests on the ground before it is released again.
-const REST: f32 = 1.5;
+const REST: f32 = 4.0;
 
 pub fn plugin(app: &mut App) {
-    app.insert_resource(Spawner(FallRng::new(99)))
+    app.insert_resource(Spawner(Canopy(FallRng::new(99))))
         .add_systems(OnEnter(Scene::Leaves), setup)
         .add_systems(
             Update,
@@ -29,28 +26,14 @@ pub fn plugin(app: &mut App) {
 }
 
 #[derive(Resource)]
-struct Spawner(FallRng);
+struct Spawner(Canopy);
 
 impl Spawner {
-    /// A point in the lower half of the canopy.
-    fn canopy_point(&mut self) -> Vec3 {
-        let r = &mut self.0;
-        let angle = r.uniform() * TAU;
-        let radius = CANOPY_RADIUS * r.uniform().sqrt();
-        let height = CANOPY.y - 0.8 + 1.4 * r.uniform();
-        Vec3::new(
-            CANOPY.x + radius * angle.cos(),
-            height,
-            CANOPY.z + radius * angle.sin(),
-        )
-    }
-
     /// A physical leaf at rest at a canopy point, turned at random.
     fn physical_start(&mut self) -> AeroState {
-        let tilt = self.0.uniform() * TAU;
         AeroState::new(PlateState {
-            position: self.canopy_point(),
-            rotation: Quat::from_rotation_z(0.4 * tilt.sin()) * Quat::from_rotation_y(tilt),
+            position: self.0.point(),
+            rotation: self.0.turn(),
             ..default()
         })
     }
@@ -59,6 +42,44 @@ impl Spawner {
 /// A leaf on the ground, waiting to fall again.
 #[derive(Component)]
 struct Resting(Timer);
+
+/// The outline and colours of each kind.
+fn look(kind: FallPreset) -> (Outline, [Color; 3]) {
+    match kind {
+        FallPreset::MapleLeaf => (
+            Outline::Maple,
+            [
+                Color::srgb(0.80, 0.14, 0.06),
+                Color::srgb(0.92, 0.36, 0.07),
+                Color::srgb(0.95, 0.62, 0.10),
+            ],
+        ),
+        FallPreset::OakLeaf => (
+            Outline::Oak,
+            [
+                Color::srgb(0.55, 0.35, 0.12),
+                Color::srgb(0.66, 0.48, 0.16),
+                Color::srgb(0.45, 0.30, 0.12),
+            ],
+        ),
+        FallPreset::BirchLeaf => (
+            Outline::Birch,
+            [
+                Color::srgb(0.95, 0.80, 0.20),
+                Color::srgb(0.88, 0.72, 0.12),
+                Color::srgb(0.80, 0.78, 0.25),
+            ],
+        ),
+        _ => (
+            Outline::Ovate,
+            [
+                Color::srgb(0.90, 0.45, 0.10),
+                Color::srgb(0.75, 0.25, 0.08),
+                Color::srgb(0.85, 0.55, 0.18),
+            ],
+        ),
+    }
+}
 
 #[allow(clippy::too_many_arguments)]
 fn setup(
@@ -71,12 +92,13 @@ fn setup(
     mut settings: ResMut<FreeFallSettings>,
 ) {
     let here = DespawnOnExit(Scene::Leaves);
+    // Beside the tree, downwind of the trunk, looking up through the falling leaves.
     place_camera(
         &mut camera,
-        Vec3::new(-4.0, 3.0, 14.0),
-        Vec3::new(1.5, 3.4, 0.0),
+        Vec3::new(4.6, 1.4, 3.0),
+        Vec3::new(2.2, 2.6, -0.6),
     );
-    let _ = wind.set_reference_speed(2.5);
+    let _ = wind.set_reference_speed(2.0);
     // Just above the grass plane, so resting leaves do not flicker into it.
     settings.ground_height = 0.005;
     commands.insert_resource(ClearColor(Color::srgb(0.62, 0.74, 0.86)));
@@ -110,45 +132,39 @@ fn setup(
             here.clone(),
         ));
     }
-    let colours = [
-        Color::srgb(0.85, 0.33, 0.08),
-        Color::srgb(0.93, 0.62, 0.10),
-        Color::srgb(0.70, 0.15, 0.08),
-        Color::srgb(0.55, 0.45, 0.10),
-    ]
-    .map(|c| common::two_sided(&mut materials, c));
-    // Procedural leaves: ellipses 6-10 cm long in the local XZ plane, long axis along Z (the
-    // axis a leaf tumbles about). The first one is the panel's featured leaf.
+    // One mesh per kind, at its preset's size; three colours per kind.
+    let kinds: Vec<(Handle<Mesh>, [Handle<StandardMaterial>; 3])> = KINDS
+        .iter()
+        .map(|&kind| {
+            let (outline, colours) = look(kind);
+            let (major, minor) = match kind.object().shape {
+                Shape::Ellipse { major, minor, .. } => (major, minor),
+                Shape::Rectangle { length, width, .. } => (length, width),
+                Shape::Disk { diameter, .. } => (diameter, diameter),
+            };
+            let mesh = meshes.add(leaf_mesh(outline, major, minor, 0.18));
+            (mesh, colours.map(|c| common::two_sided(&mut materials, c)))
+        })
+        .collect();
     for i in 0..LEAVES {
-        let rng = &mut spawner.0;
-        let major = 0.06 + 0.04 * rng.uniform();
-        let minor = major * (0.5 + 0.2 * rng.uniform());
-        let mesh = Mesh::from(Ellipse::new(minor / 2.0, major / 2.0))
-            .rotated_by(Quat::from_rotation_x(-FRAC_PI_2));
-        let mut leaf = commands.spawn((
-            FallingObject {
-                shape: Shape::Ellipse {
-                    major,
-                    minor,
-                    thickness: 3.0e-4,
-                },
-                density: 350.0 + 300.0 * rng.uniform(),
-                seed: i as u64,
-                ..default()
-            },
-            Mesh3d(meshes.add(mesh)),
-            MeshMaterial3d(colours[i % colours.len()].clone()),
-            Transform::from_translation(spawner.canopy_point()),
+        let (mesh, colours) = &kinds[i % KINDS.len()];
+        let transform =
+            Transform::from_translation(spawner.0.point()).with_rotation(spawner.0.turn());
+        let mut entity = commands.spawn((
+            leaf(i),
+            Mesh3d(mesh.clone()),
+            MeshMaterial3d(colours[(i / KINDS.len()) % 3].clone()),
+            transform,
             here.clone(),
         ));
         if i == 0 {
-            leaf.insert(Featured);
+            entity.insert(Featured);
         }
     }
     // Physical leaves: rigid 7.3 × 4.2 cm plates, each face with lift and drag.
     let plate = RigidPlate::rectangle(0.073, 0.042, 3e-4, 500.0, AeroCoefficients::default(), 2)
         .expect("a valid plate");
-    let mesh = meshes.add(Plane3d::new(Vec3::Y, Vec2::new(0.0365, 0.021)));
+    let mesh = meshes.add(leaf_mesh(Outline::Ovate, 0.073, 0.042, 0.18));
     let green = common::two_sided(&mut materials, Color::srgb(0.62, 0.7, 0.15));
     for _ in 0..PHYSICAL_LEAVES {
         let start = spawner.physical_start();
@@ -163,7 +179,7 @@ fn setup(
     }
 }
 
-/// A leaf that lands rests a moment, then falls again from a new point in the canopy.
+/// A leaf that lands rests a while, then falls again from a new point in the canopy.
 fn rest_and_release(
     mut commands: Commands,
     mut landed: MessageReader<Landed>,
@@ -178,7 +194,8 @@ fn rest_and_release(
     }
     for (entity, mut rest, mut transform, mut object) in &mut resting {
         if rest.0.tick(time.delta()).is_finished() {
-            transform.translation = spawner.canopy_point();
+            transform.translation = spawner.0.point();
+            transform.rotation = spawner.0.turn();
             object.seed += LEAVES as u64;
             commands.entity(entity).remove::<Resting>();
         }
@@ -196,7 +213,7 @@ fn respawn_physical(mut bodies: Query<&mut AeroState>, mut spawner: ResMut<Spawn
 
 fn show_info(
     falls: Query<&FallState>,
-    featured: Single<&FallState, With<Featured>>,
+    featured: Single<(&FallingObject, &FallState), With<Featured>>,
     mut info: ResMut<SceneInfo>,
 ) {
     let mut counts = [0usize; 6];
@@ -208,19 +225,27 @@ fn show_info(
             counts[m.index()] += 1;
         }
     }
-    let mut line =
-        format!("{LEAVES} procedural leaves (orange), {PHYSICAL_LEAVES} physical plates (green)\n");
-    if let Some(r) = featured.regime() {
+    let mut line = format!(
+        "{LEAVES} leaves: maple, oak, birch, the paper's; {PHYSICAL_LEAVES} physical plates (green)\n"
+    );
+    let (object, state) = *featured;
+    if let Some(r) = state.regime() {
         line += &format!(
-            "featured leaf: Re = {:.2e}, I* = {:.2}, U = {:.2} m/s, main motion {:?}\n",
-            r.reynolds, r.inertia, r.descent_speed, r.main
+            "featured leaf ({:.0} mm): Re = {:.1e}, I* = {:.3}, U = {:.2} m/s, main {:?}\n",
+            object.shape.lengths().0 * 1e3,
+            r.reynolds,
+            r.inertia,
+            r.descent_speed,
+            r.main
         );
     }
+    let airborne = counts.iter().filter(|c| **c > 0).count();
+    line += &format!("in the air, {airborne} motions at once:");
     for m in PrimitiveMotion::ALL {
         if counts[m.index()] > 0 {
-            line += &format!("{} {:?}: {}   ", m.label(), m, counts[m.index()]);
+            line += &format!("  {} {}", m.label(), counts[m.index()]);
         }
     }
-    line += &format!("on the ground: {grounded}");
+    line += &format!("   on the ground: {grounded}");
     info.0 = line;
 }

@@ -1,11 +1,13 @@
-//! The showcase: autumn leaves (procedural and physical), the paper's coin falling in water, and
-//! a flag, banner or curtain, in one app sharing one wind field. With `--features egui` a panel
-//! tunes the wind, the falling objects, the cloth and the aero bodies live.
+//! The showcase: autumn leaves (procedural and physical), the paper's coin falling in water, a
+//! flag, banner or curtain, and a gallery of the free-fall paper's motions, in one app sharing
+//! one wind field. With `--features egui` a panel tunes the wind, the falling objects, the cloth
+//! and the aero bodies live.
 //!
-//! Keys: 1 leaves, 2 coin, 3 flag · G gizmos (off, wind, paths and yarns, all) · ↑/↓ wind speed ·
-//! ←/→ wind direction · in the flag scene V flag/banner/curtain, F frozen/non-frozen.
+//! Keys: 1 leaves, 2 coin, 3 flag, 4 gallery · G gizmos (off, wind, paths and yarns, all) ·
+//! ↑/↓ wind speed · ←/→ wind direction · in the flag scene V flag/banner/curtain, F
+//! frozen/non-frozen.
 //!
-//! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag]
+//! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag|gallery]
 //! [--fabric flag|banner|curtain] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`
 //!
 //! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits;
@@ -15,9 +17,11 @@ mod coin;
 #[path = "../common/mod.rs"]
 mod common;
 mod flag;
+mod gallery;
 mod leaves;
 #[cfg(feature = "egui")]
 mod panel;
+mod population;
 
 use std::path::PathBuf;
 
@@ -38,16 +42,19 @@ pub enum Scene {
     Coin,
     /// A flag, banner or curtain.
     Flag,
+    /// The six primitive motions and the paper's Fig. 15 objects.
+    Gallery,
 }
 
 impl Scene {
-    const ALL: [Self; 3] = [Self::Leaves, Self::Coin, Self::Flag];
+    const ALL: [Self; 4] = [Self::Leaves, Self::Coin, Self::Flag, Self::Gallery];
 
     fn name(self) -> &'static str {
         match self {
             Self::Leaves => "leaves",
             Self::Coin => "coin",
             Self::Flag => "flag",
+            Self::Gallery => "gallery",
         }
     }
 }
@@ -114,7 +121,7 @@ fn main() {
         ..default()
     })
     .init_resource::<SceneInfo>()
-    .add_plugins((leaves::plugin, coin::plugin, flag::plugin))
+    .add_plugins((leaves::plugin, coin::plugin, flag::plugin, gallery::plugin))
     .add_systems(Update, (switch_scene, toggle_gizmos, steer_wind, show_hud));
     if let Some(dir) = option("--tour") {
         std::fs::create_dir_all(&dir).expect("--tour: cannot create the folder");
@@ -146,6 +153,7 @@ fn switch_scene(keys: Res<ButtonInput<KeyCode>>, mut next: ResMut<NextState<Scen
         (KeyCode::Digit1, Scene::Leaves),
         (KeyCode::Digit2, Scene::Coin),
         (KeyCode::Digit3, Scene::Flag),
+        (KeyCode::Digit4, Scene::Gallery),
     ] {
         if keys.just_pressed(key) {
             next.set(scene);
@@ -208,7 +216,7 @@ fn show_hud(
         .unwrap_or(0.0);
     hud.0 = format!(
         "{:?}   frame {frame_ms:.1} ms   wind {:.1} m/s at 10 m\n\
-         1 leaves  2 coin  3 flag   G gizmos   Up/Down speed   Left/Right direction\n{}",
+         1 leaves  2 coin  3 flag  4 gallery   G gizmos   Up/Down speed   Left/Right direction\n{}",
         scene.get(),
         wind.config().reference_speed,
         info.0

@@ -8,7 +8,7 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPlugin, EguiPrimaryContextPass, egui};
 use bevy_windfall::cloth::{ClothGizmos, ClothWindModel, LeadingYarn};
-use bevy_windfall::freefall::FallGizmos;
+use bevy_windfall::freefall::{FallGizmos, FallPreset};
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::{WindGizmos, WindRebuild, WindRebuilt};
 
@@ -187,6 +187,21 @@ fn falling_section(ui: &mut egui::Ui, objects: &mut Objects) {
         return;
     };
     let mut edit = object.clone();
+    egui::ComboBox::from_label("preset")
+        .selected_text("choose…")
+        .show_ui(ui, |ui| {
+            for preset in FallPreset::ALL {
+                if ui.selectable_label(false, preset.name()).clicked() {
+                    edit = FallingObject {
+                        seed: edit.seed + 1,
+                        ..preset.object()
+                    };
+                }
+            }
+        });
+    // The width over the length, kept when the size or the outline changes.
+    let (length, width, _) = edit.shape.lengths();
+    let aspect = (width / length).clamp(0.05, 1.0);
     let (mut kind, mut size, mut thickness) = match edit.shape {
         Shape::Disk {
             diameter,
@@ -221,12 +236,12 @@ fn falling_section(ui: &mut egui::Ui, objects: &mut Objects) {
         },
         1 => Shape::Rectangle {
             length: size,
-            width: 0.6 * size,
+            width: aspect * size,
             thickness,
         },
         _ => Shape::Ellipse {
             major: size,
-            minor: 0.6 * size,
+            minor: aspect * size,
             thickness,
         },
     };

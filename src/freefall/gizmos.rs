@@ -1,5 +1,6 @@
-//! Debug drawing of falls (feature `gizmos`): each falling object's recent simulated path
-//! (one fixed step ahead of the shown, smoothed pose), coloured by its primitive motion.
+//! Debug drawing of falls (feature `gizmos`): each falling object's recent path as shown (its
+//! global position, so falls inside scaled or moved parents draw where they are seen), each
+//! stretch coloured by the primitive motion it was in.
 
 use std::collections::VecDeque;
 
@@ -8,6 +9,8 @@ use bevy::color::Color;
 use bevy::ecs::prelude::*;
 use bevy::gizmos::gizmos::Gizmos;
 use bevy::math::Vec3;
+use bevy::transform::TransformSystems;
+use bevy::transform::components::GlobalTransform;
 
 use super::{FallState, FallingObject, PrimitiveMotion};
 
@@ -18,7 +21,9 @@ impl Plugin for FallGizmosPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<FallGizmos>().add_systems(
             PostUpdate,
-            draw_fall_paths.run_if(|g: Res<FallGizmos>| g.enabled),
+            draw_fall_paths
+                .after(TransformSystems::Propagate)
+                .run_if(|g: Res<FallGizmos>| g.enabled),
         );
     }
 }
@@ -44,11 +49,12 @@ impl Default for FallGizmos {
     }
 }
 
-/// The recent positions of a falling object, kept while its path is drawn, and the fall time of
-/// the last one (a smaller time means a new fall: the trail starts afresh).
+/// The recent positions of a falling object and the motion at each, kept while its path is
+/// drawn, and the fall time of the last one (a smaller time means a new fall: the trail starts
+/// afresh).
 #[derive(Component, Default, Debug)]
 pub struct FallTrail {
-    points: VecDeque<Vec3>,
+    points: VecDeque<(Vec3, Color)>,
     time: f32,
 }
 
@@ -67,10 +73,13 @@ pub fn motion_color(motion: PrimitiveMotion) -> Color {
 fn draw_fall_paths(
     mut commands: Commands,
     config: Res<FallGizmos>,
-    mut objects: Query<(Entity, &FallState, Option<&mut FallTrail>), With<FallingObject>>,
+    mut objects: Query<
+        (Entity, &FallState, &GlobalTransform, Option<&mut FallTrail>),
+        With<FallingObject>,
+    >,
     mut gizmos: Gizmos,
 ) {
-    for (entity, state, trail) in objects.iter_mut().take(config.max_objects) {
+    for (entity, state, transform, trail) in objects.iter_mut().take(config.max_objects) {
         let Some(mut trail) = trail else {
             commands.entity(entity).insert(FallTrail::default());
             continue;
@@ -83,11 +92,11 @@ fn draw_fall_paths(
             trail.points.clear();
         }
         trail.time = path.time();
-        trail.points.push_back(path.position());
+        let color = state.motion().map_or(Color::WHITE, motion_color);
+        trail.points.push_back((transform.translation(), color));
         while trail.points.len() > config.trail_frames.max(2) {
             trail.points.pop_front();
         }
-        let color = state.motion().map_or(Color::WHITE, motion_color);
-        gizmos.linestrip(trail.points.iter().copied(), color);
+        gizmos.linestrip_gradient(trail.points.iter().copied());
     }
 }

@@ -38,9 +38,11 @@ pub(crate) struct MotionShape {
 /// ε_e ≠ 0, k = 4 the helix, whose radius A_e (1 + ε_e sin 4φ) changes sign for ε_e > 1, so the
 /// path crosses the axis eight times a turn: the paper's eight-petal rose (Fig. 8). A_e → 0 is
 /// steady descent. The paper gives no values; these are ours, chosen so the paths look like
-/// Fig. 1 and Fig. 9: fluttering swings about 0.6 L to each side, tumbling drifts 1.5 L per
-/// half-turn, the spiral circles at 0.8 L once every four swings, the helix's outer petals reach
-/// 0.6 L and it turns once every eight swings, so each petal takes one swing as a zigzag does.
+/// Fig. 1 and Fig. 9: fluttering swings about 0.6 L to each side; tumbling drifts L per
+/// half-turn, which with a drop of a / (2 St) ≈ 3 a per swing is a glide of 18° from the
+/// vertical for a disk and about 30° for a card (tumbling cards and disks drift at 10–30°); the
+/// spiral circles at 0.8 L once every 2.7 swings; the helix's outer petals reach 0.6 L and it
+/// turns once every eight swings, so each petal takes one swing as a zigzag does.
 pub(crate) const MOTION_SHAPES: [MotionShape; 6] = [
     MotionShape {
         deviation: 0.0,
@@ -64,7 +66,7 @@ pub(crate) const MOTION_SHAPES: [MotionShape; 6] = [
         lobes: 0.0,
     },
     MotionShape {
-        deviation: 1.5,
+        deviation: 0.5,
         spread: 0.35,
         rate: 1.0,
         eccentricity: 0.0,
@@ -80,7 +82,7 @@ pub(crate) const MOTION_SHAPES: [MotionShape; 6] = [
     MotionShape {
         deviation: 0.8,
         spread: 0.25,
-        rate: 0.5,
+        rate: 0.75,
         eccentricity: 0.0,
         lobes: 1.0,
     },
@@ -505,7 +507,7 @@ fn rotation_z(start_half: Vec2, phi: f32) -> Quat {
 /// no range reduction and no library call on the per-object hot path. Larger |x| falls back to
 /// the library.
 pub(crate) fn sin_cos_small(x: f32) -> (f32, f32) {
-    if !(x.abs() <= PI) {
+    if x.is_nan() || x.abs() > PI {
         return x.sin_cos();
     }
     // Horner form with the factorials' reciprocals as constants (multiplications only).
