@@ -177,6 +177,13 @@ impl FallScales {
         self.drag_length / (u * u + slip * slip).sqrt().max(1e-9)
     }
 
+    /// 1/τ for a squared slip speed `slip_squared` (m²/s²): [`FallScales::response_time`]'s
+    /// reciprocal with one square root.
+    pub fn response_rate(&self, slip_squared: f32) -> f32 {
+        let u = self.descent_speed;
+        (u * u + slip_squared).sqrt() / self.drag_length.max(1e-12)
+    }
+
     /// How much of a tumble's turn (and its sideways drift) survives in wind of horizontal speed
     /// `wind` (m/s): the paper's §5 finds that "under a strong wind field, tumbling motion
     /// disappears and the object travels far" (Fig. 17). Modelled as 1 / (1 + (|u_h| / 3U)²):
