@@ -1,12 +1,13 @@
-//! A flag on a pole, a banner, or a curtain at a window, shaped by P-type Fourier-descriptor
-//! yarns driven by 1/f^β noise and the shared wind field. V cycles them, F switches frozen and
-//! non-frozen wind.
+//! A flag on a pole, a banner on a mast, or a curtain in an open window, shaped by P-type
+//! Fourier-descriptor yarns driven by 1/f^β noise and the shared wind field, each with its Table 1
+//! preset named on screen. V cycles them, F switches to the same object's row of the other wind
+//! model (frozen or non-frozen).
 
 use bevy::asset::RenderAssetUsages;
 use bevy::image::Image;
 use bevy::prelude::*;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
-use bevy_windfall::cloth::ClothWindModel;
+use bevy_windfall::cloth::{ClothWindModel, HarmonicFilter};
 use bevy_windfall::prelude::*;
 
 use super::{Scene, SceneInfo, place_camera};
@@ -52,13 +53,17 @@ impl Fabric {
     }
 }
 
+/// Height of the window's sill, m.
+const WINDOW_BOTTOM: f32 = 0.9;
+
 /// The cloth entity.
 #[derive(Component)]
 pub struct Hanging;
 
-/// The curtain rod: shown only while the curtain hangs from it.
+/// Scenery shown only with one fabric: the pole with the flag and banner, the wall, window and
+/// rod with the curtain.
 #[derive(Component)]
-struct CurtainRod;
+struct Setting(&'static [Fabric]);
 
 #[derive(Resource)]
 struct Textures([Handle<Image>; 3]);
@@ -144,17 +149,9 @@ fn setup(
     mut commands: Commands,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
-    mut camera: Single<&mut Transform, With<Camera3d>>,
-    mut wind: ResMut<WindField>,
     mut fabric: ResMut<Fabric>,
 ) {
     let here = DespawnOnExit(Scene::Flag);
-    place_camera(
-        &mut camera,
-        Vec3::new(-1.0, 4.6, 7.5),
-        Vec3::new(1.2, 4.4, 0.0),
-    );
-    let _ = wind.set_reference_speed(4.5);
     commands.insert_resource(ClearColor(Color::srgb(0.62, 0.78, 0.92)));
     commands.insert_resource(GlobalAmbientLight {
         brightness: 600.0,
@@ -174,19 +171,44 @@ fn setup(
         here.clone(),
     ));
     let metal = materials.add(Color::srgb(0.75, 0.75, 0.78));
-    // Pole for the flag and the banner; a curtain rod behind and to the side.
+    let on_pole: &'static [Fabric] = &[Fabric::Flag, Fabric::Banner];
     commands.spawn((
+        Setting(on_pole),
         Mesh3d(meshes.add(Cylinder::new(0.05, 6.0))),
         MeshMaterial3d(metal.clone()),
         Transform::from_xyz(0.0, 3.0, 0.0),
         here.clone(),
     ));
+    // A wall across the wind (+X) with an open window, the room on the downwind side; the
+    // curtain rod inside, above the window.
+    let wall = materials.add(Color::srgb(0.86, 0.82, 0.74));
+    let in_window: &'static [Fabric] = &[Fabric::Curtain];
+    let (bottom, top, width) = (WINDOW_BOTTOM, WINDOW_BOTTOM + 1.9, 2.0);
+    for (size, centre) in [
+        (Vec3::new(0.2, bottom, 6.0), Vec3::new(0.0, bottom / 2.0, 0.0)),
+        (Vec3::new(0.2, 4.0 - top, 6.0), Vec3::new(0.0, (top + 4.0) / 2.0, 0.0)),
+        (
+            Vec3::new(0.2, top - bottom, 2.0),
+            Vec3::new(0.0, (top + bottom) / 2.0, -(width / 2.0 + 1.0)),
+        ),
+        (
+            Vec3::new(0.2, top - bottom, 2.0),
+            Vec3::new(0.0, (top + bottom) / 2.0, width / 2.0 + 1.0),
+        ),
+    ] {
+        commands.spawn((
+            Setting(in_window),
+            Mesh3d(meshes.add(Cuboid::from_size(size))),
+            MeshMaterial3d(wall.clone()),
+            Transform::from_translation(centre),
+            here.clone(),
+        ));
+    }
     commands.spawn((
-        CurtainRod,
-        Mesh3d(meshes.add(Cuboid::new(2.2, 0.06, 0.06))),
+        Setting(in_window),
+        Mesh3d(meshes.add(Cuboid::new(0.05, 0.05, width + 0.6))),
         MeshMaterial3d(metal),
-        Transform::from_xyz(-2.6, 4.9, -2.5),
-        Visibility::Hidden,
+        Transform::from_xyz(0.25, top + 0.08, 0.0),
         here.clone(),
     ));
     // The cloth's mesh and shape come from `apply_fabric`.
@@ -214,19 +236,18 @@ fn grid(rows: usize, columns: usize, width: f32, height: f32) -> ClothGrid {
 
 /// The cloth for the current [`Fabric`]: its Table 1 preset, grid, edge and place.
 pub fn cloth_for(fabric: Fabric, non_frozen: bool) -> (Cloth, Transform) {
-    let mut params = fabric.preset(non_frozen).params();
+    let params = fabric.preset(non_frozen).params();
     let pole = Transform::from_xyz(0.05, 5.95, 0.0);
     let (grid, attachment, transform) = match fabric {
         Fabric::Flag => (grid(28, 42, 2.1, 1.4), ClothAttachment::Pole, pole),
-        Fabric::Banner => {
-            params.bow = 0.12;
-            (grid(14, 64, 3.6, 0.6), ClothAttachment::Pole, pole)
-        }
-        // The rod runs along local +X; the curtain billows along local +Z, into the room.
+        Fabric::Banner => (grid(14, 64, 3.6, 0.6), ClothAttachment::Pole, pole),
+        // The rod runs along local +X (world −Z); the curtain billows along local +Z (world +X),
+        // into the room, downwind.
         Fabric::Curtain => (
-            grid(30, 36, 2.0, 2.0),
+            grid(30, 36, 1.85, 2.1),
             ClothAttachment::Rod,
-            Transform::from_xyz(-3.6, 4.88, -2.5),
+            Transform::from_xyz(0.25, WINDOW_BOTTOM + 1.95, 1.05)
+                .with_rotation(Quat::from_rotation_y(std::f32::consts::FRAC_PI_2)),
         ),
     };
     let cloth = Cloth {
@@ -247,8 +268,10 @@ fn keys(
         *fabric = fabric.next();
     }
     if keys.just_pressed(KeyCode::KeyF) {
+        // The same object and band of Table 1 in the other wind model: the whole row.
         let non_frozen = !matches!(cloth.params.model, ClothWindModel::NonFrozen { .. });
-        cloth.params.model = fabric.preset(non_frozen).params().model;
+        let (fresh, _) = cloth_for(*fabric, non_frozen);
+        cloth.params = fresh.params;
     }
 }
 
@@ -257,15 +280,33 @@ fn apply_fabric(
     fabric: Res<Fabric>,
     textures: Res<Textures>,
     hanging: Single<(Entity, &MeshMaterial3d<StandardMaterial>), With<Hanging>>,
-    mut rod: Single<&mut Visibility, With<CurtainRod>>,
+    mut scenery: Query<(&Setting, &mut Visibility)>,
+    mut camera: Single<&mut Transform, (With<Camera3d>, Without<Hanging>)>,
+    mut wind: ResMut<WindField>,
     mut materials: ResMut<Assets<StandardMaterial>>,
 ) {
     let (entity, material) = *hanging;
-    **rod = if *fabric == Fabric::Curtain {
-        Visibility::Inherited
-    } else {
-        Visibility::Hidden
+    for (setting, mut visibility) in &mut scenery {
+        *visibility = if setting.0.contains(&*fabric) {
+            Visibility::Inherited
+        } else {
+            Visibility::Hidden
+        };
+    }
+    // A gentle breeze at the flag (6 m/s at 5.5 m), more for the window at 1 m: the log law
+    // slows the wind near the ground.
+    let (speed, eye, target) = match *fabric {
+        Fabric::Curtain => (
+            10.0,
+            Vec3::new(4.6, 2.1, 2.6),
+            Vec3::new(0.3, WINDOW_BOTTOM + 0.9, 0.0),
+        ),
+        // From above and in front, so the waves show in the outline.
+        Fabric::Banner => (7.5, Vec3::new(-2.2, 7.6, 6.6), Vec3::new(1.6, 5.2, 0.0)),
+        Fabric::Flag => (7.5, Vec3::new(-1.4, 7.8, 4.6), Vec3::new(1.1, 4.9, 0.0)),
     };
+    let _ = wind.set_reference_speed(speed);
+    place_camera(&mut camera, eye, target);
     let (cloth, transform) = cloth_for(*fabric, false);
     if let Some(mut m) = materials.get_mut(&material.0) {
         m.base_color_texture = Some(textures.0[*fabric as usize].clone());
@@ -283,18 +324,24 @@ fn show_info(
         return;
     };
     let p = &cloth.params;
-    let model = match p.model {
-        ClothWindModel::Frozen => "frozen",
-        ClothWindModel::NonFrozen { .. } => "non-frozen",
-    };
+    let non_frozen = matches!(p.model, ClothWindModel::NonFrozen { .. });
+    let preset = fabric.preset(non_frozen);
     info.0 = format!(
-        "{:?} ({model})   wind here {:.1} m/s -> |v| = {:.1} steps/frame   theta = {:.1}   \
-         beta = {:.2}   swirl |u| = {}\nV flag/banner/curtain   F frozen/non-frozen",
+        "{:?}: Table 1 row \"{}\", {} wind (theta {:.1}, beta {:.2}, swirl |u| {}, band {})\n\
+         wind here {:.1} m/s -> |v| = {:.1} cells/frame      V flag/banner/curtain   \
+         F frozen/non-frozen",
         *fabric,
-        wind.velocity(at.translation()).length(),
-        state.wind_speed,
+        preset.observation(),
+        if non_frozen { "non-frozen" } else { "frozen" },
         p.amplitude,
         p.beta,
         p.swirl,
+        match p.filter {
+            HarmonicFilter::All => "all".to_string(),
+            HarmonicFilter::LowPass { max } => format!("[1, {max}]"),
+            HarmonicFilter::BandPass { min, max } => format!("[{min}, {max}]"),
+        },
+        wind.velocity(at.translation()).length(),
+        state.wind_speed,
     );
 }

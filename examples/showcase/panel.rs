@@ -307,6 +307,8 @@ fn cloth_section(ui: &mut egui::Ui, objects: &mut Objects) {
     ui.add(egui::Slider::new(&mut p.beta, 0.0..=5.0).text("3 smoothness β"));
     ui.add(egui::Slider::new(&mut p.swirl, -5.0..=5.0).text("4 swirl |u|"));
     ui.add(egui::Slider::new(&mut p.twist, -5.0..=5.0).text("5 twist"));
+    ui.add(egui::Slider::new(&mut p.bow, 0.0..=0.3).text("W1 bow (eq. 8)"));
+    ui.add(egui::Slider::new(&mut p.lean, 0.0..=0.3).text("W2 lean (eq. 8)"));
     ui.horizontal(|ui| {
         ui.label("6 leading yarn");
         ui.radio_value(&mut p.leading, LeadingYarn::Top, "top");
@@ -316,10 +318,7 @@ fn cloth_section(ui: &mut egui::Ui, objects: &mut Objects) {
     let mut non_frozen = matches!(p.model, ClothWindModel::NonFrozen { .. });
     if ui.checkbox(&mut non_frozen, "non-frozen").changed() {
         p.model = if non_frozen {
-            ClothWindModel::NonFrozen {
-                frames: 16,
-                period: 4.0,
-            }
+            ClothWindModel::NonFrozen { frames: 64 }
         } else {
             ClothWindModel::Frozen
         };

@@ -5,13 +5,19 @@ use bevy::math::{Vec2, Vec3};
 
 use super::sim::edge_angle;
 
-/// Start of yarn `k` in its yarn plane (along the yarn, across it), eq. 8 with the paper's
-/// constant offset removed so the top node sits at the pole:
-/// along = W1·(−cos(γ + α_k)) = W1·sin α_k (the edge bows downwind, most at its middle), and
-/// across = −W2·γ·α_k (the edge leans sideways). The row itself is placed by the caller.
+/// Start of yarn `k` in its yarn plane (along the yarn, across it): eq. 8's pole edge.
+///
+/// Eq. 8 bows the edge by W1 cos(γ + α_k) = −W1 sin α_k (γ = π/2, α_k = kπ/(n−1)), an arc that
+/// is 0 at both ends and W1 in the middle; we turn its sign so the edge bows downwind. Its lean
+/// −W2 γ (1 + α_k) is linear in k and would move the lower end off the pole, which §7 says is
+/// fixed ("a flag fixed at two ends with its left edge stretching ... simple arc-like
+/// stretching"); we read it as the same arc across the stream, W2 sin α_k. So both ends stay on
+/// the pole and the edge between them bulges downwind by `bow` and sideways by `lean` (m).
 pub fn pole_edge(k: usize, rows: usize, bow: f32, lean: f32) -> Vec2 {
     let (gamma, alpha) = edge_angle(k, rows);
-    Vec2::new(-bow * (gamma + alpha).cos(), -lean * gamma * alpha)
+    let arc = -(gamma + alpha).cos();
+    let arc = if k == 0 || k + 1 == rows { 0.0 } else { arc };
+    Vec2::new(bow * arc, lean * arc)
 }
 
 /// Eq. 7: working outward from the leading yarn, every node further than `max_distance` from

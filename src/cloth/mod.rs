@@ -3,18 +3,20 @@
 //!
 //! | step | what | source |
 //! |---|---|---|
-//! | noise | 2-D (frozen) or 3-D (non-frozen) 1/f^β matrix, scaled to [−θ, θ] | §3.1, §4 |
-//! | shift | the matrix moves |v| steps along and |u| across the yarns per frame | §4.1–4.2 |
-//! | descriptor | ω(j) = exp(iθ(j)), DFT, harmonic filter, inverse | eq. 2–6 |
-//! | yarns | equal segments along the filtered directions: length kept | eq. 2 |
-//! | pole edge | arc of the fixed edge, W1 and W2 | eq. 8 |
+//! | noise | 2-D (frozen) or 3-D (non-frozen) 1/f^β matrix, band-limited along its lines, scaled to [−θ, θ] | §3.1, §4 |
+//! | descriptor | per noise line: ω(j) = exp(iθ(j)), DFT, mean and band, inverse, mean along the stream | eq. 2–6 |
+//! | shift | the lines move |v| cells along and |u| across the yarns per frame; non-frozen: one slice per frame | §4.1–4.2 |
+//! | yarns | equal segments along the directions, held at the pole, scaled by the wind: length kept | eq. 2 |
+//! | pole edge | arcs of the fixed edge, W1 and W2, both ends on the pole | eq. 8 |
 //! | constraint | neighbouring yarns at most L apart, from the leading yarn | eq. 7 |
+//! | wind strength | waves grow with the wind, a flag hangs in calm air, a curtain leans downwind | ours |
 //!
 //! The math lives in plain types ([`ClothSim`], [`DescriptorFilter`]); [`ClothPlugin`] moves
 //! every [`Cloth`] on the fixed timestep and rewrites its mesh once per rendered frame.
 
 mod constraints;
 mod descriptor;
+mod directions;
 #[cfg(feature = "gizmos")]
 mod gizmos;
 mod mesh;
@@ -30,6 +32,7 @@ pub use descriptor::{
 };
 #[cfg(feature = "gizmos")]
 pub use gizmos::{ClothGizmos, ClothGizmosPlugin, YarnGizmos};
+pub use directions::{CELLS_PER_YARN, DirectionSheet, LINE_YARNS};
 pub use mesh::{cloth_mesh, write_cloth_mesh};
 pub use noise::NoiseSheet;
 pub use params::{
@@ -37,4 +40,6 @@ pub use params::{
 };
 pub use plugin::{Cloth, ClothInvalid, ClothPlugin, ClothState, wind_steps_per_frame};
 pub use presets::ClothPreset;
-pub use sim::{ClothAttachment, ClothSim, PAPER_FPS};
+pub use sim::{
+    ClothAttachment, ClothSim, MAX_NOISE_CELLS, PAPER_FPS, air_speed, steps_for_speed,
+};

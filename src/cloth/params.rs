@@ -70,16 +70,16 @@ impl LeadingYarn {
 
 /// Frozen (a 2-D noise matrix shifted each frame, §4.1) or non-frozen (a 3-D matrix sliced in
 /// time and shifted, §4.2) wind on the cloth.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, bevy::reflect::Reflect)]
 pub enum ClothWindModel {
     /// 2-D noise, shifted.
     Frozen,
-    /// 3-D noise of `frames` slices that loops every `period` seconds, shifted.
+    /// 3-D noise of `frames` slices, one per paper frame (50 per second), each shifted on by
+    /// |v| (§4.2). The slices are periodic, so the change loops every `frames` / 50 s (the
+    /// shift goes on, so the cloth does not repeat with it).
     NonFrozen {
-        /// Slices of the noise along time.
+        /// Slices of the noise along time, ≥ 2.
         frames: usize,
-        /// Seconds for one pass through the slices.
-        period: f32,
     },
 }
 
@@ -104,13 +104,18 @@ pub struct ClothParams {
     pub filter: HarmonicFilter,
     /// Frozen or non-frozen wind.
     pub model: ClothWindModel,
-    /// W1 of eq. 8: how far the pole edge bows downwind at its middle, m.
+    /// W1 of eq. 8: how far the pole edge bows downwind at its middle, as a fraction of the
+    /// edge's length (grows with the wind, see [`ClothSim::rebuild`](super::ClothSim::rebuild)).
     pub bow: f32,
-    /// W2 of eq. 8: the pole edge's sideways lean per radian of α_k, m.
+    /// W2 of eq. 8: how far the pole edge bulges across the stream at its middle, as a fraction
+    /// of the edge's length.
     pub lean: f32,
     /// Largest distance between neighbouring yarns, as a multiple of the rest spacing (L of
     /// eq. 7 is this times [`ClothGrid::row_spacing`]).
     pub max_stretch: f32,
+    /// The air speed θ is the amplitude at, m/s (the middle of the row's Table 1 band): in
+    /// other winds the waves scale by √(U / this) (see [`ClothSim::rebuild`](super::ClothSim::rebuild)).
+    pub reference_speed: f32,
     /// Seed of the noise.
     pub seed: u64,
 }
@@ -234,8 +239,24 @@ impl ClothParams {
         )?;
         finite("params.swirl", self.swirl, true, reason)?;
         finite("params.twist", self.twist, true, reason)?;
-        finite("params.bow", self.bow, true, reason)?;
-        finite("params.lean", self.lean, true, reason)?;
+        finite(
+            "params.bow",
+            self.bow,
+            self.bow.abs() <= 1.0,
+            "a fraction of the edge, in [−1, 1]",
+        )?;
+        finite(
+            "params.lean",
+            self.lean,
+            self.lean.abs() <= 1.0,
+            "a fraction of the edge, in [−1, 1]",
+        )?;
+        finite(
+            "params.reference_speed",
+            self.reference_speed,
+            self.reference_speed > 0.0,
+            "must be finite and > 0",
+        )?;
         finite(
             "params.max_stretch",
             self.max_stretch,
@@ -251,20 +272,14 @@ impl ClothParams {
                 reason: "band-pass min exceeds max",
             });
         }
-        if let ClothWindModel::NonFrozen { frames, period } = self.model {
-            if frames < 2 {
-                return Err(ClothError::Count {
-                    field: "params.model.frames",
-                    value: frames,
-                    reason: "must be ≥ 2",
-                });
-            }
-            finite(
-                "params.model.period",
-                period,
-                period > 0.0,
-                "must be finite and > 0",
-            )?;
+        if let ClothWindModel::NonFrozen { frames } = self.model
+            && frames < 2
+        {
+            return Err(ClothError::Count {
+                field: "params.model.frames",
+                value: frames,
+                reason: "must be ≥ 2",
+            });
         }
         Ok(())
     }

@@ -70,15 +70,11 @@ impl Plugin for ClothPlugin {
     }
 }
 
-/// Table 1 of the cloth paper ties its shift |v| to wind speed: |v| = 1–2 for 2.7–3.6 m/s,
-/// 4–8 for 6–7.2 m/s, 10 for a fresh breeze. A least-squares line through the origin gives
-/// |v| ≈ 0.9 U (U in m/s); it is capped at 50 steps per frame.
-pub fn wind_steps_per_frame(speed: f32) -> f32 {
-    if speed.is_finite() {
-        (0.9 * speed).clamp(0.0, 50.0)
-    } else {
-        0.0
-    }
+/// The shift |v| (noise cells per paper frame) for wind of `speed` m/s on a cloth whose yarns are
+/// `length` m long: the waves run at the wind's speed ([`air_speed`](super::air_speed)); capped
+/// at 50 cells per frame.
+pub fn wind_steps_per_frame(speed: f32, length: f32) -> f32 {
+    super::sim::steps_for_speed(speed, length).clamp(0.0, 50.0)
 }
 
 fn init_cloths(
@@ -134,7 +130,7 @@ fn step_cloths(
             let v = wind.velocity(transform.translation());
             let local = transform.affine().inverse().transform_vector3(v);
             let horizontal = Vec3::new(local.x, 0.0, local.z);
-            speed = wind_steps_per_frame(horizontal.length());
+            speed = wind_steps_per_frame(horizontal.length(), cloth.grid.width);
             if cloth.attachment == ClothAttachment::Pole && horizontal.length() > 1e-3 {
                 let target = (-horizontal.z).atan2(horizontal.x);
                 let turn = (target - state.yaw + std::f32::consts::PI)

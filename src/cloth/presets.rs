@@ -86,6 +86,41 @@ impl ClothPreset {
         table
     }
 
+    /// "banner", "curtain" or "flag".
+    pub fn object(self) -> &'static str {
+        let name = format!("{self:?}");
+        if name.starts_with("Banner") {
+            "banner"
+        } else if name.starts_with("Curtain") {
+            "curtain"
+        } else {
+            "flag"
+        }
+    }
+
+    /// The same object and wind band in the other wind model (Table 1's other row).
+    pub fn other_model(self) -> Self {
+        let i = Self::ALL.iter().position(|p| *p == self).unwrap_or(0);
+        Self::ALL[i ^ 1]
+    }
+
+    /// The middle of the row's wind band in the paper's Table 1, m/s: light breeze 2.7–3.6,
+    /// gentle 3.6–7.2, moderate 8.9–12.5.
+    pub fn band_speed(self) -> f32 {
+        use ClothPreset::*;
+        match self {
+            BannerLightFrozen | BannerLightNonFrozen => 3.15,
+            CurtainModerateFrozen | CurtainModerateNonFrozen | FlagModerateFrozen
+            | FlagModerateNonFrozen => 10.7,
+            _ => 5.4,
+        }
+    }
+
+    /// Whether this row uses non-frozen wind.
+    pub fn non_frozen(self) -> bool {
+        self.row().non_frozen
+    }
+
     /// What the paper observed for this row.
     pub fn observation(self) -> &'static str {
         self.row().observation
@@ -102,6 +137,13 @@ impl ClothPreset {
             non_frozen,
             ..
         } = self.row();
+        // Eq. 8's W1 and W2 (the paper gives no values): a banner's long edge bulges more than a
+        // flag's; a curtain hangs from a rigid rod.
+        let (bow, lean) = match self.object() {
+            "banner" => (0.08, 0.04),
+            "flag" => (0.05, 0.03),
+            _ => (0.0, 0.0),
+        };
         ClothParams {
             wind_speed,
             amplitude,
@@ -114,16 +156,14 @@ impl ClothPreset {
                 None => HarmonicFilter::All,
             },
             model: if non_frozen {
-                ClothWindModel::NonFrozen {
-                    frames: 32,
-                    period: 8.0,
-                }
+                ClothWindModel::NonFrozen { frames: 64 }
             } else {
                 ClothWindModel::Frozen
             },
-            bow: 0.0,
-            lean: 0.0,
+            bow,
+            lean,
             max_stretch: 1.0,
+            reference_speed: self.band_speed(),
             seed: 1,
         }
     }

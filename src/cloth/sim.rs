@@ -1,20 +1,28 @@
 //! One cloth's shape over time: noise → angles → descriptor → yarns → constraints
 //! (cloth paper §4–5), in the cloth's local frame.
+//!
+//! Per frame, each yarn reads its directions from the [`DirectionSheet`] where the wind has
+//! shifted the noise, holds them along the stream near the pole, scales them with the wind's
+//! strength, and is traced from its pole-edge node (eq. 8) in equal segments; eq. 7 then aligns
+//! the yarns. See [`ClothSim::rebuild`] for what the wind's strength does.
 
 use std::f32::consts::{FRAC_PI_2, PI};
 
 use bevy::math::{Vec2, Vec3};
 
 use super::constraints::{align_to_leading_yarn, pole_edge};
-use super::descriptor::{DescriptorFilter, trace_yarn};
+use super::directions::{CELLS_PER_YARN, DirectionSheet, LINE_YARNS};
 use super::noise::NoiseSheet;
 use super::params::{ClothError, ClothGrid, ClothParams, ClothWindModel};
 
 /// The paper's frame rate: Table 1's shifts are steps per frame at 50 fps.
 pub const PAPER_FPS: f32 = 50.0;
 
+/// Most noise cells a cloth may have (frames × max(rows, 16) × 160): 4 M cells, 48 MiB.
+pub const MAX_NOISE_CELLS: usize = 1 << 22;
+
 /// How the yarns sit in the cloth's local frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bevy::reflect::Reflect)]
 pub enum ClothAttachment {
     /// Flag or banner: the fixed edge runs down local −Y from the origin, yarns stream along +X
     /// and flap along Z.
@@ -25,36 +33,68 @@ pub enum ClothAttachment {
     Rod,
 }
 
+/// The wind speed (m/s) at which noise moving `steps` cells per paper frame along a yarn of
+/// `length` m runs at the wind's own speed: waves on flags travel at about the speed of the flow
+/// (Alben's simulations of light flags; Raynaud & Mulleners 2026 in a wind tunnel). For a 1.5 m
+/// flag this is Table 1's pairing: |v| = 2 in a gentle breeze (4.7 m/s), 4 in a moderate one.
+pub fn air_speed(steps: f32, length: f32) -> f32 {
+    steps * PAPER_FPS * length / CELLS_PER_YARN as f32
+}
+
+/// Inverse of [`air_speed`]: the shift |v| (cells per paper frame) of noise that moves at
+/// `speed` m/s along a yarn of `length` m.
+pub fn steps_for_speed(speed: f32, length: f32) -> f32 {
+    let steps = speed * CELLS_PER_YARN as f32 / (PAPER_FPS * length.max(1e-6));
+    if steps.is_finite() { steps } else { 0.0 }
+}
+
+/// What the wind's strength does to the shape, from the air speed U (m/s) and the speed the
+/// parameters were set for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Strength {
+    /// Angle scale: √(U / U_ref), at most 1.2.
+    gain: f32,
+    /// 1 in calm air (a flag hangs), 0 from 3 m/s (it flies).
+    droop: f32,
+    /// A curtain's lean downwind, rad.
+    lean: f32,
+}
+
+impl Strength {
+    fn new(speed: f32, reference: f32) -> Self {
+        let speed = if speed.is_finite() { speed.max(0.0) } else { 0.0 };
+        let gain = (speed / reference.max(0.1)).sqrt().min(1.2);
+        let calm = ((speed - 0.5) / 2.5).clamp(0.0, 1.0);
+        let droop = 1.0 - calm * calm * (3.0 - 2.0 * calm);
+        // tan(lean) ∝ U² (drag over weight): 35° at 5 m/s, at most 60°.
+        let lean = (0.028 * speed * speed).atan().min(PI / 3.0);
+        Self { gain, droop, lean }
+    }
+}
+
 /// The state of one cloth: its noise, the shifts so far, and the node positions.
 #[derive(Clone)]
 pub struct ClothSim {
     grid: ClothGrid,
     params: ClothParams,
     attachment: ClothAttachment,
-    noise: NoiseSheet,
-    filter: DescriptorFilterCell,
-    /// Noise steps the pattern has moved along / across the yarns, and the time for the
+    sheet: DirectionSheet,
+    /// Noise cells the pattern has moved along / across the yarns, and the time for the
     /// non-frozen slices.
     along: f64,
     across: f64,
     time: f64,
+    /// |v| of the last step.
+    speed: f32,
     positions: Vec<Vec3>,
-    angles: Vec<f32>,
     directions: Vec<Vec2>,
-    yarn: Vec<Vec2>,
-}
-
-/// [`DescriptorFilter`] holds planned FFTs; cloning a sim re-plans them.
-struct DescriptorFilterCell(DescriptorFilter, usize);
-
-impl Clone for DescriptorFilterCell {
-    fn clone(&self) -> Self {
-        Self(DescriptorFilter::new(self.1, self.0.filter()), self.1)
-    }
+    /// (cos, sin) of each segment's turn down in calm air.
+    droop: Vec<Vec2>,
 }
 
 impl ClothSim {
-    /// Validates the configuration, makes the noise matrix and the first shape.
+    /// Validates the configuration, makes the noise matrix and its directions, and the first
+    /// shape.
     pub fn new(
         grid: ClothGrid,
         params: ClothParams,
@@ -63,27 +103,48 @@ impl ClothSim {
         grid.validate()?;
         params.validate()?;
         let segments = grid.columns - 1;
-        // The noise is wider than the cloth so that a wave takes a while to come round again.
-        let noise_columns = (4 * segments).max(64);
         let noise_rows = grid.rows.max(16);
         let frames = match params.model {
             ClothWindModel::Frozen => 1,
-            ClothWindModel::NonFrozen { frames, .. } => frames,
+            ClothWindModel::NonFrozen { frames } => frames,
         };
-        let noise = NoiseSheet::new(frames, noise_rows, noise_columns, params.beta, params.seed)?;
+        // Checked before anything is allocated: the noise and its directions take 12 bytes a
+        // cell.
+        let cells = frames
+            .saturating_mul(noise_rows)
+            .saturating_mul(LINE_YARNS * CELLS_PER_YARN);
+        if cells > MAX_NOISE_CELLS {
+            let (field, value) = if frames > 1 {
+                ("params.model.frames", frames)
+            } else {
+                ("grid.rows", grid.rows)
+            };
+            return Err(ClothError::Count {
+                field,
+                value,
+                reason: "the noise would exceed 2^22 cells (frames × max(rows, 16) × 160)",
+            });
+        }
+        let noise = NoiseSheet::new(
+            frames,
+            noise_rows,
+            LINE_YARNS * CELLS_PER_YARN,
+            params.beta,
+            params.seed,
+        )?;
+        let sheet = DirectionSheet::new(&noise, params.amplitude, params.filter);
         let mut sim = Self {
             grid,
             params,
             attachment,
-            noise,
-            filter: DescriptorFilterCell(DescriptorFilter::new(segments, params.filter), segments),
+            sheet,
             along: 0.0,
             across: 0.0,
             time: 0.0,
+            speed: params.wind_speed,
             positions: vec![Vec3::ZERO; grid.rows * grid.columns],
-            angles: vec![0.0; segments],
             directions: vec![Vec2::X; segments],
-            yarn: vec![Vec2::ZERO; grid.columns],
+            droop: vec![Vec2::X; segments],
         };
         sim.rebuild();
         Ok(sim)
@@ -104,69 +165,103 @@ impl ClothSim {
         &self.positions
     }
 
-    /// Noise steps moved along the yarns so far.
+    /// Noise cells moved along the yarns so far.
     pub fn shift_along(&self) -> f64 {
         self.along
     }
 
-    /// Advances the noise by `dt` seconds at `wind_speed` steps per paper frame (|v|) and the
-    /// parameters' swirl (|u|). Frozen wind only shifts (§4.1); non-frozen wind also moves
-    /// through its time slices (§4.2). Non-finite input is ignored.
+    /// The air speed the cloth flaps in now, m/s (from the last step's |v|, [`air_speed`]).
+    pub fn air_speed(&self) -> f32 {
+        air_speed(self.speed, self.grid.width)
+    }
+
+    /// Advances the noise by `dt` seconds at `wind_speed` cells per paper frame (|v|) and the
+    /// parameters' swirl (|u|). Frozen wind only shifts (§4.1); non-frozen wind also moves on one
+    /// time slice per paper frame (§4.2: slice f is the first slice shifted f |v| cells, so the
+    /// pattern both travels and changes). Non-finite input is ignored.
     pub fn advance(&mut self, dt: f32, wind_speed: f32) {
         let dt = f64::from(dt);
         let steps = f64::from(wind_speed) * f64::from(PAPER_FPS) * dt;
         let swirl = f64::from(self.params.swirl) * f64::from(PAPER_FPS) * dt;
-        if steps.is_finite() && swirl.is_finite() && dt.is_finite() {
+        if steps.is_finite() && swirl.is_finite() && dt.is_finite() && dt >= 0.0 {
             // Keep the offsets within one period of the noise so f64 precision never runs out.
-            let (_, rows, columns) = self.noise.size();
+            let (frames, rows, columns) = self.sheet.size();
             self.along = (self.along + steps).rem_euclid(columns as f64);
             self.across = (self.across + swirl).rem_euclid(rows as f64);
-            if let ClothWindModel::NonFrozen { period, .. } = self.params.model {
-                self.time = (self.time + dt).rem_euclid(f64::from(period));
-            }
+            self.time = (self.time + dt).rem_euclid(frames as f64 / f64::from(PAPER_FPS));
+            self.speed = wind_speed;
         }
     }
 
-    /// Rebuilds every node from the current shift: the noise gives the angles θ(k, j) in
-    /// [−θ, θ]; the descriptor (eq. 4–6, filtered) gives unit segment directions; each yarn is
-    /// traced from its pole-edge node (eq. 8); then eq. 7 aligns the yarns to the leading one.
+    /// Rebuilds every node from the current shift. Each yarn k reads the directions of its
+    /// noise row (k + the swirl's shift, offset by the twist) where the wind has moved them, and
+    /// the wind's strength U (from |v|, [`air_speed`]) shapes them:
+    /// - near the pole the yarn leaves along the stream: the deviation from it grows from 0 at
+    ///   the pole to full over the first 30 % of the yarn (the pole holds the cloth);
+    /// - the deviation scales with √(U / U_ref), U_ref the parameters' reference speed (the
+    ///   middle of the Table 1 row's band), so waves grow with the wind (at most 1.2×), and so
+    ///   do eq. 8's bow and lean;
+    /// - in calm air a flag or banner hangs: the paper has no gravity, so the yarns are turned
+    ///   down by up to 65°–85° (more toward the free edge) below 0.5 m/s, blending to flying at
+    ///   3 m/s;
+    /// - a curtain leans downwind (+Z) by atan(0.028 U²): 35° at 5 m/s.
     pub fn rebuild(&mut self) {
         let (rows, columns) = (self.grid.rows, self.grid.columns);
+        let segments = columns - 1;
         let segment = self.grid.segment();
         let spacing = self.grid.row_spacing();
+        let strength = Strength::new(self.air_speed(), self.params.reference_speed);
         let frame = match self.params.model {
             ClothWindModel::Frozen => 0.0,
-            ClothWindModel::NonFrozen { frames, period } => {
-                self.time / f64::from(period) * frames as f64
-            }
+            ClothWindModel::NonFrozen { .. } => self.time * f64::from(PAPER_FPS),
         };
-        let amplitude = self.params.amplitude;
+        let step = CELLS_PER_YARN as f64 / segments as f64;
+        let hold = (0.3 * segments as f32).max(1.0);
+        let (lean_sin, lean_cos) = strength.lean.sin_cos();
+        for (j, turn) in self.droop.iter_mut().enumerate() {
+            let fraction = (j as f32 + 0.5) / segments as f32;
+            let down = strength.droop * (65f32 + 20.0 * fraction).to_radians();
+            let (sin, cos) = down.sin_cos();
+            *turn = Vec2::new(cos, sin);
+        }
         for k in 0..rows {
             let row = k as f64 + self.across;
-            let skew = f64::from(self.params.twist) * k as f64;
-            // Waves travel from the pole to the free edge: segment j now reads what segment
-            // j − Δ read Δ steps ago.
-            let first = skew - self.along;
-            self.noise
-                .sample_line(frame, row, first, amplitude, &mut self.angles);
-            self.filter.0.directions(&self.angles, &mut self.directions);
-            let start = pole_edge(k, rows, self.params.bow, self.params.lean);
-            trace_yarn(start, &self.directions, segment, &mut self.yarn);
-            for (j, p) in self.yarn.iter().enumerate() {
-                self.positions[k * columns + j] = self.to_local(*p, k, spacing);
+            let first = f64::from(self.params.twist) * k as f64 - self.along;
+            self.sheet
+                .sample_line(frame, row, first, step, &mut self.directions);
+            let mut p = match self.attachment {
+                ClothAttachment::Pole => {
+                    let edge = pole_edge(
+                        k,
+                        rows,
+                        self.params.bow * strength.gain * self.grid.height,
+                        self.params.lean * strength.gain * self.grid.height,
+                    );
+                    Vec3::new(edge.x, -(k as f32) * spacing, edge.y)
+                }
+                ClothAttachment::Rod => Vec3::new(k as f32 * spacing, 0.0, 0.0),
+            };
+            self.positions[k * columns] = p;
+            for (j, (d, down)) in self.directions.iter().zip(&self.droop).enumerate() {
+                // Held along the stream at the pole, scaled by the wind.
+                let s = ((j as f32 + 0.5) / hold).min(1.0);
+                let f = strength.gain * (1.0 - (1.0 - s) * (1.0 - s));
+                let d = (Vec2::X + (*d - Vec2::X) * f).normalize_or(Vec2::X);
+                let delta = match self.attachment {
+                    ClothAttachment::Pole => Vec3::new(d.x * down.x, -d.x * down.y, d.y),
+                    ClothAttachment::Rod => {
+                        // Down the curtain, leaning downwind.
+                        let (a, b) = (d.x * lean_cos - d.y * lean_sin, d.x * lean_sin + d.y * lean_cos);
+                        Vec3::new(0.0, -a, b)
+                    }
+                };
+                p += delta * segment;
+                self.positions[k * columns + j + 1] = p;
             }
         }
         let max_distance = spacing * self.params.max_stretch;
         let leading = self.params.leading.index(rows);
         align_to_leading_yarn(&mut self.positions, rows, columns, leading, max_distance);
-    }
-
-    /// From the yarn plane (along the yarn, across it) of yarn `k` to the cloth's local frame.
-    fn to_local(&self, p: Vec2, k: usize, spacing: f32) -> Vec3 {
-        match self.attachment {
-            ClothAttachment::Pole => Vec3::new(p.x, -(k as f32) * spacing, p.y),
-            ClothAttachment::Rod => Vec3::new(k as f32 * spacing, -p.x, p.y),
-        }
     }
 }
 

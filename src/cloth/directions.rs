@@ -1,0 +1,208 @@
+//! The yarn directions of every line of the noise, through the P-type descriptor (cloth paper
+//! §3.2, §4).
+//!
+//! **Our reading of §3–4.** §4.2 applies "every line of the noise array to an entry of the P
+//! descriptor": the descriptor runs over the whole noise line, and a yarn is the stretch of it
+//! between the pole and the free edge. So the harmonics of Table 1's band-pass are counted over
+//! the noise line, which is [`LINE_YARNS`] yarn lengths long (the paper's 256-wide matrix holds a
+//! few of its flags): a band [3, 5] keeps waves of 1 to 1.7 yarn lengths, the waves real flags
+//! carry (about 1.9 lengths, Raynaud & Mulleners 2026), and wrinkles come with the higher
+//! bands. The band limits the noise's own spectrum S(k) of §3.1 (the paper names both spectra
+//! S(k)) and the descriptor's S(k) of eq. 5 alike: the angles θ(j) are band-limited before ω =
+//! exp(iθ) and scaled so the sheet spans [−θ, θ] (θ is three standard deviations, and a clamp);
+//! the descriptor keeps the same band of ω and
+//! its mean, which drops the harmonics exp(iθ) adds and smooths the curve. The mean direction
+//! (k = 0) of a periodic line does not change when the line shifts, so it cannot swing the yarn;
+//! each line is turned so its mean points along the stream.
+//!
+//! **Done once.** The DFT of a periodic line commutes with shifting it, so every frame's yarn is
+//! a shifted read of these precomputed lines: the paper's per-frame descriptor, computed once per
+//! line when the cloth is built.
+
+use std::sync::Arc;
+
+use bevy::math::Vec2;
+use rustfft::{Fft, FftPlanner, num_complex::Complex};
+
+use super::descriptor::HarmonicFilter;
+use super::noise::NoiseSheet;
+
+/// A noise line is this many yarn lengths long.
+pub const LINE_YARNS: usize = 5;
+/// Noise cells per yarn length: Table 1's shifts |v| are cells per paper frame.
+pub const CELLS_PER_YARN: usize = 32;
+
+/// Unit segment directions for every (frame, row, column) of a noise sheet, in the yarn plane:
+/// x along the stream, y across it.
+#[derive(Clone, Debug)]
+pub struct DirectionSheet {
+    frames: usize,
+    rows: usize,
+    columns: usize,
+    directions: Vec<Vec2>,
+}
+
+/// Forward and inverse transforms of one line length.
+struct LineTransforms {
+    forward: Arc<dyn Fft<f32>>,
+    inverse: Arc<dyn Fft<f32>>,
+    buffer: Vec<Complex<f32>>,
+    scratch: Vec<Complex<f32>>,
+}
+
+impl LineTransforms {
+    fn new(n: usize) -> Self {
+        let mut planner = FftPlanner::new();
+        let forward = planner.plan_fft_forward(n);
+        let inverse = planner.plan_fft_inverse(n);
+        let scratch = forward
+            .get_inplace_scratch_len()
+            .max(inverse.get_inplace_scratch_len());
+        Self {
+            forward,
+            inverse,
+            buffer: vec![Complex::new(0.0, 0.0); n],
+            scratch: vec![Complex::new(0.0, 0.0); scratch],
+        }
+    }
+
+    /// Transforms `buffer`, keeps harmonic k where `keep(k)` (k and n − k together), and
+    /// transforms back (scaled by n).
+    fn filter(&mut self, keep: impl Fn(usize) -> bool) {
+        let n = self.buffer.len();
+        self.forward
+            .process_with_scratch(&mut self.buffer, &mut self.scratch);
+        for (k, s) in self.buffer.iter_mut().enumerate() {
+            if !keep(k.min(n - k)) {
+                *s = Complex::new(0.0, 0.0);
+            }
+        }
+        self.inverse
+            .process_with_scratch(&mut self.buffer, &mut self.scratch);
+    }
+}
+
+impl DirectionSheet {
+    /// Runs every line of `noise` through the pipeline of the module docs with the angle
+    /// amplitude `amplitude` (θ, rad) and the band `filter`.
+    pub fn new(noise: &NoiseSheet, amplitude: f32, filter: HarmonicFilter) -> Self {
+        let (frames, rows, columns) = noise.size();
+        let lines = frames * rows;
+        let mut transforms = LineTransforms::new(columns);
+        let band = |k: usize| k > 0 && filter.keeps(k, columns);
+        // 1. Band-limit the angles along each line (the noise's S(k), §3.1).
+        let mut angles = vec![0.0f32; lines * columns];
+        for (line, out) in angles.chunks_exact_mut(columns).enumerate() {
+            let values = noise.line(line);
+            for (b, v) in transforms.buffer.iter_mut().zip(values) {
+                *b = Complex::new(*v, 0.0);
+            }
+            transforms.filter(band);
+            for (o, b) in out.iter_mut().zip(&transforms.buffer) {
+                *o = b.re;
+            }
+        }
+        // 2. Scale the sheet to span [−θ, θ]: three standard deviations to θ (clamped there), so
+        //    the spread does not depend on how many cells the sheet has (a peak would).
+        let n = angles.len().max(1) as f64;
+        let rms = (angles.iter().map(|a| f64::from(*a).powi(2)).sum::<f64>() / n).sqrt() as f32;
+        let scale = if rms > 0.0 && rms.is_finite() {
+            amplitude / (3.0 * rms)
+        } else {
+            0.0
+        };
+        // 3. The descriptor of each line (eq. 4–6): ω = exp(iθ), its mean and band, turned so
+        //    the mean points along the stream, normalised.
+        let mut directions = vec![Vec2::X; lines * columns];
+        for (out, line) in directions
+            .chunks_exact_mut(columns)
+            .zip(angles.chunks_exact(columns))
+        {
+            for (b, a) in transforms.buffer.iter_mut().zip(line) {
+                let (sin, cos) = (a * scale).clamp(-amplitude, amplitude).sin_cos();
+                *b = Complex::new(cos, sin);
+            }
+            transforms.filter(|k| k == 0 || band(k));
+            let mean: Complex<f32> = transforms.buffer.iter().sum();
+            let turn = if mean.norm() > 1e-12 {
+                mean.conj() / mean.norm()
+            } else {
+                Complex::new(1.0, 0.0)
+            };
+            let mut previous = Vec2::X;
+            for (o, b) in out.iter_mut().zip(&transforms.buffer) {
+                let w = b * turn;
+                let v = Vec2::new(w.re, w.im);
+                let length = v.length();
+                *o = if length > 1e-9 && length.is_finite() {
+                    v / length
+                } else {
+                    previous
+                };
+                previous = *o;
+            }
+        }
+        Self {
+            frames,
+            rows,
+            columns,
+            directions,
+        }
+    }
+
+    /// (frames, rows, columns).
+    pub fn size(&self) -> (usize, usize, usize) {
+        (self.frames, self.rows, self.columns)
+    }
+
+    /// Fills `out[j]` with the unit direction at (frame, row, first + j · step), interpolated
+    /// linearly on every axis (wrapping) and normalised.
+    pub fn sample_line(&self, frame: f64, row: f64, first: f64, step: f64, out: &mut [Vec2]) {
+        let split = |x: f64, n: usize| -> (usize, usize, f32) {
+            let len = n as f64;
+            let c = x - (x / len).floor() * len;
+            let c = if c.is_finite() {
+                c.clamp(0.0, len)
+            } else {
+                0.0
+            };
+            let i = (c as usize).min(n - 1);
+            (i, (i + 1) % n, (c - i as f64).clamp(0.0, 1.0) as f32)
+        };
+        let (f0, f1, tf) = if self.frames > 1 {
+            split(frame, self.frames)
+        } else {
+            (0, 0, 0.0)
+        };
+        let (r0, r1, tr) = split(row, self.rows);
+        let columns = self.columns;
+        let lines = [
+            ((f0 * self.rows + r0) * columns, (1.0 - tf) * (1.0 - tr)),
+            ((f0 * self.rows + r1) * columns, (1.0 - tf) * tr),
+            ((f1 * self.rows + r0) * columns, tf * (1.0 - tr)),
+            ((f1 * self.rows + r1) * columns, tf * tr),
+        ];
+        let used = if self.frames > 1 { 4 } else { 2 };
+        let len = columns as f64;
+        let step = if step.is_finite() { step } else { 1.0 };
+        let mut c = {
+            let c = first - (first / len).floor() * len;
+            if c.is_finite() { c.clamp(0.0, len) } else { 0.0 }
+        };
+        for o in out.iter_mut() {
+            let i0 = (c as usize).min(columns - 1);
+            let i1 = if i0 + 1 == columns { 0 } else { i0 + 1 };
+            let t = (c - i0 as f64) as f32;
+            let mut v = Vec2::ZERO;
+            for &(base, w) in &lines[..used] {
+                let (a, b) = (self.directions[base + i0], self.directions[base + i1]);
+                v += (a + (b - a) * t) * w;
+            }
+            *o = v.normalize_or(Vec2::X);
+            c += step;
+            if c >= len {
+                c -= len;
+            }
+        }
+    }
+}
