@@ -120,61 +120,30 @@ fn pole_edge_is_where_eq_8_puts_it() {
         ..ClothPreset::BannerGentleFrozen.params()
     };
     let mut s = sim(grid, params);
-    for step in 0..10 {
-        s.advance(0.1, 3.0 + step as f32);
+    // At the reference speed the arcs have their full size: W1 and W2 of the edge's length.
+    let steps = steps_for_speed(params.reference_speed, grid.width);
+    for _ in 0..10 {
+        s.advance(0.1, steps);
         s.rebuild();
         for k in 0..grid.rows {
             let alpha = k as f32 * PI / (grid.rows - 1) as f32;
+            let arc = if k == 0 || k + 1 == grid.rows {
+                0.0
+            } else {
+                alpha.sin()
+            };
             let expected = Vec3::new(
-                0.2 * alpha.sin(),
+                0.2 * grid.height * arc,
                 -(k as f32) * grid.row_spacing(),
-                -0.05 * PI / 2.0 * alpha,
+                0.05 * grid.height * arc,
             );
             let got = s.positions()[k * grid.columns];
             assert!(
-                got.distance(expected) < 1e-5,
+                got.distance(expected) < 1e-4,
                 "row {k}: {got} vs {expected}"
             );
         }
     }
-    // Both fixed ends stay on the pole.
-    assert!(s.positions()[0].x.abs() < 1e-6);
-    assert!(s.positions()[(grid.rows - 1) * grid.columns].x.abs() < 1e-5);
-}
-
-/// Direction of each segment of yarn `k`, in the yarn plane (x, z).
-fn segment_angles(s: &ClothSim, k: usize) -> Vec<f32> {
-    let c = s.grid().columns;
-    let p = &s.positions()[k * c..(k + 1) * c];
-    p.windows(2)
-        .map(|w| (w[1].z - w[0].z).atan2(w[1].x - w[0].x))
-        .collect()
-}
-
-#[test]
-fn frozen_waves_travel_from_the_pole_to_the_free_edge() {
-    let dt = 0.02;
-    let params = ClothParams {
-        // One noise step per time step: 1 / (50 fps · 0.02 s) = 1 step per paper frame.
-        wind_speed: 1.0,
-        swirl: 0.0,
-        filter: HarmonicFilter::All,
-        ..ClothPreset::FlagGentleFrozen.params()
-    };
-    let mut s = sim(ClothGrid::default(), params);
-    let before = segment_angles(&s, 0);
-    s.advance(dt, params.wind_speed);
-    s.rebuild();
-    let after = segment_angles(&s, 0);
-    // What segment j showed, segment j + 1 shows one step later: the wave moved away from the
-    // pole by one segment.
-    for j in 0..before.len() - 1 {
-        assert!((after[j + 1] - before[j]).abs() < 1e-4, "segment {j}");
-    }
-    assert!(
-        before.iter().zip(&after).any(|(a, b)| (a - b).abs() > 1e-3),
-        "the cloth moved"
-    );
 }
 
 fn cloth_app(wind: Option<WindConfig>, cloth: Cloth) -> (App, Entity) {
@@ -205,8 +174,10 @@ fn wind_field_sets_speed_and_streaming_direction() {
         app.update();
     }
     let state = app.world().get::<ClothState>(entity).unwrap();
+    // Noise moving at the wind's 6 m/s along a 1.5 m yarn of 32 cells: 2.56 cells a frame.
+    let expected = 6.0 * 32.0 / (50.0 * 1.5);
     assert!(
-        (state.wind_speed - 0.9 * 6.0).abs() < 1e-3,
+        (state.wind_speed - expected).abs() < 1e-3,
         "{}",
         state.wind_speed
     );
@@ -229,6 +200,10 @@ fn positions_after(seed: u64, steps: usize) -> Vec<u32> {
         ..default()
     };
     let (mut app, entity) = cloth_app(Some(WindConfig::default()), cloth);
+    // Up in the wind (at the ground the log law gives calm air, and a calm flag hangs still).
+    app.world_mut()
+        .entity_mut(entity)
+        .insert(Transform::from_xyz(0.0, 10.0, 0.0));
     for _ in 0..steps {
         app.update();
     }
@@ -360,21 +335,24 @@ fn bad_configuration_names_its_field() {
             "params.model.frames",
             grid,
             ClothParams {
-                model: ClothWindModel::NonFrozen {
-                    frames: 1,
-                    period: 1.0,
-                },
+                model: ClothWindModel::NonFrozen { frames: 1 },
                 ..params
             },
         ),
         (
-            "params.model.period",
+            "params.model.frames",
             grid,
             ClothParams {
-                model: ClothWindModel::NonFrozen {
-                    frames: 8,
-                    period: 0.0,
-                },
+                model: ClothWindModel::NonFrozen { frames: 1 << 40 },
+                ..params
+            },
+        ),
+        ("params.bow", grid, ClothParams { bow: 2.0, ..params }),
+        (
+            "params.reference_speed",
+            grid,
+            ClothParams {
+                reference_speed: 0.0,
                 ..params
             },
         ),
@@ -421,7 +399,7 @@ proptest! {
         let grid = ClothGrid { rows, columns, width: 1.0, height: 0.6 };
         let params = ClothParams {
             amplitude, beta, wind_speed, swirl, twist, seed,
-            model: if non_frozen { ClothWindModel::NonFrozen { frames: 4, period: 1.0 } } else { ClothWindModel::Frozen },
+            model: if non_frozen { ClothWindModel::NonFrozen { frames: 4 } } else { ClothWindModel::Frozen },
             ..ClothParams::default()
         };
         let attachment = if rod { ClothAttachment::Rod } else { ClothAttachment::Pole };

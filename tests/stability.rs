@@ -276,7 +276,7 @@ proptest! {
         let grid = ClothGrid { rows, columns, width: 1.5, height: 1.0 };
         let params = ClothParams {
             amplitude, beta, wind_speed, swirl, twist, seed,
-            model: if non_frozen { ClothWindModel::NonFrozen { frames: 4, period: 1.0 } } else { ClothWindModel::Frozen },
+            model: if non_frozen { ClothWindModel::NonFrozen { frames: 4 } } else { ClothWindModel::Frozen },
             ..ClothParams::default()
         };
         let mut sim = match ClothSim::new(grid, params, ClothAttachment::Pole) {
@@ -307,8 +307,11 @@ proptest! {
             let yarn = &p[leading * columns..(leading + 1) * columns];
             let length: f32 = yarn.windows(2).map(|w| w[0].distance(w[1])).sum();
             prop_assert!((length - grid.width).abs() <= 1e-4 * grid.width, "yarn {length}");
-            for (a, b) in p.iter().zip(&p[columns..]) {
-                prop_assert!(a.distance(*b) <= gap * (1.0 + 1e-5) + 1e-6, "eq. 7 broken");
+            // Eq. 7 holds past the pole edge, which eq. 8 stretches into an arc.
+            for (i, (a, b)) in p.iter().zip(&p[columns..]).enumerate() {
+                if i % columns != 0 {
+                    prop_assert!(a.distance(*b) <= gap * (1.0 + 1e-5) + 1e-6, "eq. 7 broken");
+                }
             }
         }
     }

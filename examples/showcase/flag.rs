@@ -185,8 +185,14 @@ fn setup(
     let in_window: &'static [Fabric] = &[Fabric::Curtain];
     let (bottom, top, width) = (WINDOW_BOTTOM, WINDOW_BOTTOM + 1.9, 2.0);
     for (size, centre) in [
-        (Vec3::new(0.2, bottom, 6.0), Vec3::new(0.0, bottom / 2.0, 0.0)),
-        (Vec3::new(0.2, 4.0 - top, 6.0), Vec3::new(0.0, (top + 4.0) / 2.0, 0.0)),
+        (
+            Vec3::new(0.2, bottom, 6.0),
+            Vec3::new(0.0, bottom / 2.0, 0.0),
+        ),
+        (
+            Vec3::new(0.2, 4.0 - top, 6.0),
+            Vec3::new(0.0, (top + 4.0) / 2.0, 0.0),
+        ),
         (
             Vec3::new(0.2, top - bottom, 2.0),
             Vec3::new(0.0, (top + bottom) / 2.0, -(width / 2.0 + 1.0)),

@@ -93,8 +93,7 @@ impl DirectionSheet {
         // 1. Band-limit the angles along each line (the noise's S(k), §3.1).
         let mut angles = vec![0.0f32; lines * columns];
         for (line, out) in angles.chunks_exact_mut(columns).enumerate() {
-            let values = noise.line(line);
-            for (b, v) in transforms.buffer.iter_mut().zip(values) {
+            for (b, v) in transforms.buffer.iter_mut().zip(noise.line(line)) {
                 *b = Complex::new(*v, 0.0);
             }
             transforms.filter(band);
@@ -187,7 +186,11 @@ impl DirectionSheet {
         let step = if step.is_finite() { step } else { 1.0 };
         let mut c = {
             let c = first - (first / len).floor() * len;
-            if c.is_finite() { c.clamp(0.0, len) } else { 0.0 }
+            if c.is_finite() {
+                c.clamp(0.0, len)
+            } else {
+                0.0
+            }
         };
         for o in out.iter_mut() {
             let i0 = (c as usize).min(columns - 1);

@@ -19,6 +19,7 @@ mod descriptor;
 mod directions;
 #[cfg(feature = "gizmos")]
 mod gizmos;
+mod measure;
 mod mesh;
 mod noise;
 mod params;
@@ -30,9 +31,10 @@ pub use constraints::{align_to_leading_yarn, pole_edge};
 pub use descriptor::{
     DescriptorFilter, HarmonicFilter, bend_angles, total_curvature, trace_yarn, yarn_from_angles,
 };
+pub use directions::{CELLS_PER_YARN, DirectionSheet, LINE_YARNS};
 #[cfg(feature = "gizmos")]
 pub use gizmos::{ClothGizmos, ClothGizmosPlugin, YarnGizmos};
-pub use directions::{CELLS_PER_YARN, DirectionSheet, LINE_YARNS};
+pub use measure::{FlapRecorder, FlapStats};
 pub use mesh::{cloth_mesh, write_cloth_mesh};
 pub use noise::NoiseSheet;
 pub use params::{
@@ -40,6 +42,4 @@ pub use params::{
 };
 pub use plugin::{Cloth, ClothInvalid, ClothPlugin, ClothState, wind_steps_per_frame};
 pub use presets::ClothPreset;
-pub use sim::{
-    ClothAttachment, ClothSim, MAX_NOISE_CELLS, PAPER_FPS, air_speed, steps_for_speed,
-};
+pub use sim::{ClothAttachment, ClothSim, MAX_NOISE_CELLS, PAPER_FPS, air_speed, steps_for_speed};

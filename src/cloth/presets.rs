@@ -110,7 +110,9 @@ impl ClothPreset {
         use ClothPreset::*;
         match self {
             BannerLightFrozen | BannerLightNonFrozen => 3.15,
-            CurtainModerateFrozen | CurtainModerateNonFrozen | FlagModerateFrozen
+            CurtainModerateFrozen
+            | CurtainModerateNonFrozen
+            | FlagModerateFrozen
             | FlagModerateNonFrozen => 10.7,
             _ => 5.4,
         }

@@ -62,7 +62,11 @@ struct Strength {
 
 impl Strength {
     fn new(speed: f32, reference: f32) -> Self {
-        let speed = if speed.is_finite() { speed.max(0.0) } else { 0.0 };
+        let speed = if speed.is_finite() {
+            speed.max(0.0)
+        } else {
+            0.0
+        };
         let gain = (speed / reference.max(0.1)).sqrt().min(1.2);
         let calm = ((speed - 0.5) / 2.5).clamp(0.0, 1.0);
         let droop = 1.0 - calm * calm * (3.0 - 2.0 * calm);
@@ -251,7 +255,10 @@ impl ClothSim {
                     ClothAttachment::Pole => Vec3::new(d.x * down.x, -d.x * down.y, d.y),
                     ClothAttachment::Rod => {
                         // Down the curtain, leaning downwind.
-                        let (a, b) = (d.x * lean_cos - d.y * lean_sin, d.x * lean_sin + d.y * lean_cos);
+                        let (a, b) = (
+                            d.x * lean_cos - d.y * lean_sin,
+                            d.x * lean_sin + d.y * lean_cos,
+                        );
                         Vec3::new(0.0, -a, b)
                     }
                 };

@@ -666,7 +666,6 @@ mod tests {
         }
     }
 
-
     #[test]
     fn heading_follows_the_long_axis() {
         // Long axis (local Z) turned to world +X: the plate glides along ±Z.
