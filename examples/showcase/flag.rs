@@ -281,6 +281,7 @@ fn keys(
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn apply_fabric(
     mut commands: Commands,
     fabric: Res<Fabric>,
