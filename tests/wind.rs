@@ -82,13 +82,19 @@ fn frozen_time_series_has_kolmogorov_slope() {
 fn components_follow_eq_12_ratios_and_surface_layer_level() {
     let field = WindField::new(config()).unwrap();
     let c = field.config();
-    // At the nodes of the reference plane the turbulence is the unit field times σ.
+    // What anemometers at the reference height record while the frozen pattern blows past for
+    // one period of the grid: eight masts across the wind, sampled between the nodes.
     let mut samples: [Vec<f32>; 3] = Default::default();
-    for i in 0..c.grid[0] {
-        for k in 0..c.grid[1] {
-            let p = Vec3::new(i as f32, c.reference_height, k as f32)
-                * Vec3::new(c.cell_size, 1.0, c.cell_size);
-            let v = field.velocity_at(p, 0.0);
+    let period = c.grid[0] as f32 * c.cell_size / c.reference_speed;
+    let steps = 4 * c.grid[0];
+    for mast in 0..8 {
+        let p = Vec3::new(
+            0.37,
+            c.reference_height,
+            (mast as f32 * 7.3 + 0.41) * c.cell_size,
+        );
+        for i in 0..steps {
+            let v = field.velocity_at(p, i as f32 * period / steps as f32);
             for (axis, s) in samples.iter_mut().enumerate() {
                 s.push(v[axis]);
             }
@@ -96,19 +102,21 @@ fn components_follow_eq_12_ratios_and_surface_layer_level() {
     }
     let sd: Vec<f64> = samples.iter().map(|s| mean_variance(s).1.sqrt()).collect();
     let u_star = f64::from(field.friction_velocity());
-    // World axes: x along the wind (u), y up (w), z across (v).
+    // World axes: x along the wind (u), y up (w), z across (v). Eight masts see a sample of
+    // the field, so the ratios hold to a few per cent, and interpolating between nodes smooths
+    // every component alike (a little below the nodes' 2.5 u*).
     assert!(
-        (sd[2] / sd[0] - 0.88).abs() < 1e-3,
+        (sd[2] / sd[0] - 0.88).abs() < 0.06,
         "σv/σu = {}",
         sd[2] / sd[0]
     );
     assert!(
-        (sd[1] / sd[0] - 0.55).abs() < 1e-3,
+        (sd[1] / sd[0] - 0.55).abs() < 0.04,
         "σw/σu = {}",
         sd[1] / sd[0]
     );
     assert!(
-        (sd[0] / u_star - 2.5).abs() < 1e-3,
+        (sd[0] / u_star - 2.5).abs() < 0.35,
         "σu/u* = {}",
         sd[0] / u_star
     );

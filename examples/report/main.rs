@@ -11,6 +11,7 @@ mod cloth;
 mod costs;
 mod freefall;
 mod plot;
+mod presets;
 mod spectrum;
 mod stability;
 mod wind;
@@ -108,6 +109,7 @@ fn main() {
     spectrum::report(&mut report);
     wind::report(&mut report);
     freefall::report(&mut report);
+    presets::report(&mut report);
     cloth::report(&mut report);
     aero::report(&mut report);
     aero::particle_cloth(&mut report);

@@ -157,6 +157,49 @@ impl DirectionSheet {
     /// Fills `out[j]` with the unit direction at (frame, row, first + j · step), interpolated
     /// linearly on every axis (wrapping) and normalised.
     pub fn sample_line(&self, frame: f64, row: f64, first: f64, step: f64, out: &mut [Vec2]) {
+        let mut taps = Vec::new();
+        self.column_taps(first, step, out.len(), &mut taps);
+        self.blend_line(frame, row, &taps, out);
+        for o in out.iter_mut() {
+            *o = o.normalize_or(Vec2::X);
+        }
+    }
+
+    /// The columns a line read from `first` in steps of `step` falls between, `count` of them:
+    /// (left column, right column, weight of the right one). Yarns read with the same offsets
+    /// share them.
+    pub fn column_taps(&self, first: f64, step: f64, count: usize, taps: &mut Vec<ColumnTap>) {
+        let columns = self.columns;
+        let len = columns as f64;
+        let step = if step.is_finite() { step } else { 1.0 };
+        let mut c = {
+            let c = first - (first / len).floor() * len;
+            if c.is_finite() {
+                c.clamp(0.0, len)
+            } else {
+                0.0
+            }
+        };
+        taps.clear();
+        taps.extend((0..count).map(|_| {
+            let i0 = (c as usize).min(columns - 1);
+            let i1 = if i0 + 1 == columns { 0 } else { i0 + 1 };
+            let tap = ColumnTap {
+                left: i0 as u32,
+                right: i1 as u32,
+                weight: (c - i0 as f64) as f32,
+            };
+            c += step;
+            if c >= len {
+                c -= len;
+            }
+            tap
+        }));
+    }
+
+    /// Fills `out[j]` with the direction at (frame, row, column tap j), interpolated linearly
+    /// on every axis but not normalised (its length is a little under 1 between nodes).
+    pub fn blend_line(&self, frame: f64, row: f64, taps: &[ColumnTap], out: &mut [Vec2]) {
         let split = |x: f64, n: usize| -> (usize, usize, f32) {
             let len = n as f64;
             let c = x - (x / len).floor() * len;
@@ -168,44 +211,45 @@ impl DirectionSheet {
             let i = (c as usize).min(n - 1);
             (i, (i + 1) % n, (c - i as f64).clamp(0.0, 1.0) as f32)
         };
-        let (f0, f1, tf) = if self.frames > 1 {
-            split(frame, self.frames)
-        } else {
-            (0, 0, 0.0)
-        };
         let (r0, r1, tr) = split(row, self.rows);
         let columns = self.columns;
-        let lines = [
-            ((f0 * self.rows + r0) * columns, (1.0 - tf) * (1.0 - tr)),
-            ((f0 * self.rows + r1) * columns, (1.0 - tf) * tr),
-            ((f1 * self.rows + r0) * columns, tf * (1.0 - tr)),
-            ((f1 * self.rows + r1) * columns, tf * tr),
-        ];
-        let used = if self.frames > 1 { 4 } else { 2 };
-        let len = columns as f64;
-        let step = if step.is_finite() { step } else { 1.0 };
-        let mut c = {
-            let c = first - (first / len).floor() * len;
-            if c.is_finite() {
-                c.clamp(0.0, len)
-            } else {
-                0.0
-            }
+        let line =
+            |f: usize, r: usize| &self.directions[(f * self.rows + r) * columns..][..columns];
+        let lerp = |l: &[Vec2], tap: &ColumnTap| {
+            let (a, b) = (l[tap.left as usize], l[tap.right as usize]);
+            a + (b - a) * tap.weight
         };
-        for o in out.iter_mut() {
-            let i0 = (c as usize).min(columns - 1);
-            let i1 = if i0 + 1 == columns { 0 } else { i0 + 1 };
-            let t = (c - i0 as f64) as f32;
-            let mut v = Vec2::ZERO;
-            for &(base, w) in &lines[..used] {
-                let (a, b) = (self.directions[base + i0], self.directions[base + i1]);
-                v += (a + (b - a) * t) * w;
+        if self.frames > 1 {
+            let (f0, f1, tf) = split(frame, self.frames);
+            let (a, b, c, d) = (line(f0, r0), line(f0, r1), line(f1, r0), line(f1, r1));
+            let w = [
+                (1.0 - tf) * (1.0 - tr),
+                (1.0 - tf) * tr,
+                tf * (1.0 - tr),
+                tf * tr,
+            ];
+            for (o, tap) in out.iter_mut().zip(taps) {
+                *o = lerp(a, tap) * w[0]
+                    + lerp(b, tap) * w[1]
+                    + lerp(c, tap) * w[2]
+                    + lerp(d, tap) * w[3];
             }
-            *o = v.normalize_or(Vec2::X);
-            c += step;
-            if c >= len {
-                c -= len;
+        } else {
+            let (a, b) = (line(0, r0), line(0, r1));
+            for (o, tap) in out.iter_mut().zip(taps) {
+                *o = lerp(a, tap) * (1.0 - tr) + lerp(b, tap) * tr;
             }
         }
     }
+}
+
+/// Two columns of a noise line and the weight of the second: where a node reads the line.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ColumnTap {
+    /// The column to the node's left.
+    pub left: u32,
+    /// The column to its right (wrapping).
+    pub right: u32,
+    /// The right one's weight, in [0, 1).
+    pub weight: f32,
 }

@@ -31,7 +31,7 @@ pub use constraints::{align_to_leading_yarn, pole_edge};
 pub use descriptor::{
     DescriptorFilter, HarmonicFilter, bend_angles, total_curvature, trace_yarn, yarn_from_angles,
 };
-pub use directions::{CELLS_PER_YARN, DirectionSheet, LINE_YARNS};
+pub use directions::{CELLS_PER_YARN, ColumnTap, DirectionSheet, LINE_YARNS};
 #[cfg(feature = "gizmos")]
 pub use gizmos::{ClothGizmos, ClothGizmosPlugin, YarnGizmos};
 pub use measure::{FlapRecorder, FlapStats};

@@ -11,7 +11,7 @@ use std::f32::consts::{FRAC_PI_2, PI};
 use bevy::math::{Vec2, Vec3};
 
 use super::constraints::{align_to_leading_yarn, pole_edge};
-use super::directions::{CELLS_PER_YARN, DirectionSheet, LINE_YARNS};
+use super::directions::{CELLS_PER_YARN, ColumnTap, DirectionSheet, LINE_YARNS};
 use super::noise::NoiseSheet;
 use super::params::{ClothError, ClothGrid, ClothParams, ClothWindModel};
 
@@ -94,6 +94,10 @@ pub struct ClothSim {
     directions: Vec<Vec2>,
     /// (cos, sin) of each segment's turn down in calm air.
     droop: Vec<Vec2>,
+    /// How much of each segment's deviation from the stream is kept (the pole's hold × the
+    /// wind's gain).
+    keep: Vec<f32>,
+    taps: Vec<ColumnTap>,
 }
 
 impl ClothSim {
@@ -149,6 +153,8 @@ impl ClothSim {
             positions: vec![Vec3::ZERO; grid.rows * grid.columns],
             directions: vec![Vec2::X; segments],
             droop: vec![Vec2::X; segments],
+            keep: vec![1.0; segments],
+            taps: Vec::with_capacity(segments),
         };
         sim.rebuild();
         Ok(sim)
@@ -222,17 +228,32 @@ impl ClothSim {
         let step = CELLS_PER_YARN as f64 / segments as f64;
         let hold = (0.3 * segments as f32).max(1.0);
         let (lean_sin, lean_cos) = strength.lean.sin_cos();
-        for (j, turn) in self.droop.iter_mut().enumerate() {
+        for (j, (turn, keep)) in self.droop.iter_mut().zip(&mut self.keep).enumerate() {
             let fraction = (j as f32 + 0.5) / segments as f32;
             let down = strength.droop * (65f32 + 20.0 * fraction).to_radians();
             let (sin, cos) = down.sin_cos();
             *turn = Vec2::new(cos, sin);
+            // Held along the stream at the pole, scaled by the wind.
+            let s = ((j as f32 + 0.5) / hold).min(1.0);
+            *keep = strength.gain * (1.0 - (1.0 - s) * (1.0 - s));
+        }
+        let twist = f64::from(self.params.twist);
+        if twist == 0.0 {
+            self.sheet
+                .column_taps(-self.along, step, segments, &mut self.taps);
         }
         for k in 0..rows {
             let row = k as f64 + self.across;
-            let first = f64::from(self.params.twist) * k as f64 - self.along;
+            if twist != 0.0 {
+                self.sheet.column_taps(
+                    twist * k as f64 - self.along,
+                    step,
+                    segments,
+                    &mut self.taps,
+                );
+            }
             self.sheet
-                .sample_line(frame, row, first, step, &mut self.directions);
+                .blend_line(frame, row, &self.taps, &mut self.directions);
             let mut p = match self.attachment {
                 ClothAttachment::Pole => {
                     let edge = pole_edge(
@@ -246,24 +267,28 @@ impl ClothSim {
                 ClothAttachment::Rod => Vec3::new(k as f32 * spacing, 0.0, 0.0),
             };
             self.positions[k * columns] = p;
-            for (j, (d, down)) in self.directions.iter().zip(&self.droop).enumerate() {
-                // Held along the stream at the pole, scaled by the wind.
-                let s = ((j as f32 + 0.5) / hold).min(1.0);
-                let f = strength.gain * (1.0 - (1.0 - s) * (1.0 - s));
-                let d = (Vec2::X + (*d - Vec2::X) * f).normalize_or(Vec2::X);
-                let delta = match self.attachment {
-                    ClothAttachment::Pole => Vec3::new(d.x * down.x, -d.x * down.y, d.y),
-                    ClothAttachment::Rod => {
+            let out = &mut self.positions[k * columns + 1..(k + 1) * columns];
+            let yarn = self.directions.iter().zip(&self.keep).zip(&self.droop);
+            match self.attachment {
+                ClothAttachment::Pole => {
+                    for (node, ((d, keep), down)) in out.iter_mut().zip(yarn) {
+                        let d = (Vec2::X + (*d - Vec2::X) * *keep).normalize_or(Vec2::X);
+                        p += Vec3::new(d.x * down.x, -d.x * down.y, d.y) * segment;
+                        *node = p;
+                    }
+                }
+                ClothAttachment::Rod => {
+                    for (node, ((d, keep), _)) in out.iter_mut().zip(yarn) {
                         // Down the curtain, leaning downwind.
+                        let d = (Vec2::X + (*d - Vec2::X) * *keep).normalize_or(Vec2::X);
                         let (a, b) = (
                             d.x * lean_cos - d.y * lean_sin,
                             d.x * lean_sin + d.y * lean_cos,
                         );
-                        Vec3::new(0.0, -a, b)
+                        p += Vec3::new(0.0, -a, b) * segment;
+                        *node = p;
                     }
-                };
-                p += delta * segment;
-                self.positions[k * columns + j + 1] = p;
+                }
             }
         }
         let max_distance = spacing * self.params.max_stretch;

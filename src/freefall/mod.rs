@@ -36,6 +36,7 @@ mod plugin;
 mod presets;
 mod random;
 mod regime;
+mod tilt;
 
 pub use database::{
     CANDIDATES, DatabaseConfig, FEATURES, Feature, MAX_DATABASE_PARAMETER, SEGMENT_SAMPLES,
