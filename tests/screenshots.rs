@@ -8,12 +8,13 @@ use std::collections::HashMap;
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
-/// The screenshots CI takes: the showcase's three scenes (and its banner and curtain), the wind
+/// The screenshots CI takes: the showcase's four scenes (and its banner and curtain), the wind
 /// and aero scenes.
-const EXPECTED: [&str; 7] = [
+const EXPECTED: [&str; 8] = [
     "showcase_leaves.png",
     "showcase_coin.png",
     "showcase_flag.png",
+    "showcase_gallery.png",
     "banner.png",
     "curtain.png",
     "wind.png",

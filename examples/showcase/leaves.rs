@@ -13,8 +13,9 @@ use super::population::{CANOPY, Canopy, KINDS, LEAVES, leaf};
 use super::{Featured, Scene, SceneInfo, common, place_camera};
 
 const PHYSICAL_LEAVES: usize = 30;
-/// Seconds a leaf rests on the ground before it is released again.
-const REST: f32 = 4.0;
+/// Seconds a leaf rests on the ground before it is released again: at least this, and up to
+/// twice as long (drawn per landing, so the leaves do not fall in waves).
+const REST: f32 = 2.0;
 
 pub fn plugin(app: &mut App) {
     app.insert_resource(Spawner(Canopy(FallRng::new(99))))
@@ -149,7 +150,7 @@ fn setup(
     for i in 0..LEAVES {
         let (mesh, colours) = &kinds[i % KINDS.len()];
         let transform =
-            Transform::from_translation(spawner.0.point()).with_rotation(spawner.0.turn());
+            Transform::from_translation(spawner.0.midair()).with_rotation(spawner.0.turn());
         let mut entity = commands.spawn((
             leaf(i),
             Mesh3d(mesh.clone()),
@@ -189,7 +190,8 @@ fn rest_and_release(
 ) {
     for message in landed.read() {
         if let Ok(mut e) = commands.get_entity(message.entity) {
-            e.insert(Resting(Timer::from_seconds(REST, TimerMode::Once)));
+            let rest = REST * (1.0 + spawner.0.0.uniform());
+            e.insert(Resting(Timer::from_seconds(rest, TimerMode::Once)));
         }
     }
     for (entity, mut rest, mut transform, mut object) in &mut resting {
@@ -231,7 +233,7 @@ fn show_info(
     let (object, state) = *featured;
     if let Some(r) = state.regime() {
         line += &format!(
-            "featured leaf ({:.0} mm): Re = {:.1e}, I* = {:.3}, U = {:.2} m/s, main {:?}\n",
+            "featured ({:.0} mm): Re = {:.1e}, I* = {:.3}, U = {:.2} m/s, main {:?}\n",
             object.shape.lengths().0 * 1e3,
             r.reynolds,
             r.inertia,

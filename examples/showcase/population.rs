@@ -8,7 +8,7 @@ use bevy::math::{Quat, Vec3};
 use bevy_windfall::freefall::{FallPreset, FallRng, FallingObject};
 
 /// Leaves on the tree.
-pub const LEAVES: usize = 400;
+pub const LEAVES: usize = 600;
 /// Centre and radius of the canopy leaves fall from, m.
 pub const CANOPY: Vec3 = Vec3::new(0.0, 5.5, 0.0);
 pub const CANOPY_RADIUS: f32 = 2.2;
@@ -44,6 +44,15 @@ impl Canopy {
             height,
             CANOPY.z + radius * angle.sin(),
         )
+    }
+
+    /// Where a leaf is when the scene starts: anywhere on its way down from the canopy, carried
+    /// downwind (+X) about as far as a leaf falling from there would be, so the scene starts as
+    /// it will go on rather than with every leaf leaving the tree at once.
+    pub fn midair(&mut self) -> Vec3 {
+        let start = self.point();
+        let height = 0.3 + (start.y - 0.3) * self.0.uniform();
+        start + Vec3::new(1.5 * (start.y - height), height - start.y, 0.0)
     }
 
     /// How a leaf hangs when it lets go: any heading, tipped by up to 0.5 rad.
