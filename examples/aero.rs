@@ -12,7 +12,6 @@ use bevy::prelude::*;
 use bevy_windfall::aero::{AeroState, PhysicalCloth, Pinning, PlateState};
 use bevy_windfall::freefall::FallRng;
 use bevy_windfall::prelude::*;
-use bevy_windfall::wind::WindGizmos;
 
 const LEAVES: usize = 120;
 /// Leaves are released in these boxes (centre x, height), left procedural, right physical.
@@ -32,10 +31,6 @@ fn main() {
         seed: 11,
         ..default()
     })))
-    .insert_resource(WindGizmos {
-        enabled: false,
-        ..default()
-    })
     .insert_resource(FreeFallSettings {
         ground_height: 0.005,
     })

@@ -12,7 +12,7 @@ use std::collections::VecDeque;
 use bevy::prelude::*;
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::{WindGizmos, speed_class_color};
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
 /// Tracers fill this box (x, z half-sizes and height), m.
@@ -23,12 +23,16 @@ const TRAIL: usize = 30;
 fn main() {
     let mut app = common::example_app("bevy_windfall: wind");
     app.add_plugins(WindfallPlugins.set(WindPlugin::new(wind_config(TemporalMode::Frozen))))
-        .insert_resource(WindGizmos {
-            half_extent: Vec2::new(BOX.x - 1.0, BOX.z - 1.0),
-            spacing: 2.5,
-            height: 1.5,
-            ..default()
-        })
+        .add_plugins(WindfallDebugPlugin)
+        .insert_gizmo_config(
+            WindGizmos {
+                half_extent: Vec2::new(BOX.x - 1.0, BOX.z - 1.0),
+                spacing: 2.5,
+                height: 1.5,
+                ..default()
+            },
+            GizmoConfig::default(),
+        )
         .insert_resource(ClearColor(Color::srgb(0.55, 0.7, 0.85)))
         .insert_resource(TracerRng(Pcg64::seed_from_u64(7)))
         .add_systems(Startup, setup)
@@ -160,35 +164,32 @@ fn draw_trails(wind: Res<WindField>, tracers: Query<&Tracer>, mut gizmos: Gizmos
     }
 }
 
-fn controls(keys: Res<ButtonInput<KeyCode>>, mut wind: ResMut<WindField>) {
-    let speed = wind.config().reference_speed;
+/// The keys edit [`WindSettings`]: speed and direction apply on the next fixed step, the
+/// temporal mode (E) by a background rebuild while the old field keeps blowing.
+fn controls(
+    keys: Res<ButtonInput<KeyCode>>,
+    mut settings: ResMut<WindSettings>,
+    mut wind: ResMut<WindField>,
+) {
     if keys.just_pressed(KeyCode::ArrowUp) {
-        let _ = wind.set_reference_speed(speed + 1.0);
+        settings.reference_speed += 1.0;
     }
     if keys.just_pressed(KeyCode::ArrowDown) {
-        let _ = wind.set_reference_speed((speed - 1.0).max(0.0));
+        settings.reference_speed = (settings.reference_speed - 1.0).max(0.0);
     }
     for (key, angle) in [(KeyCode::ArrowLeft, 0.3f32), (KeyCode::ArrowRight, -0.3)] {
         if keys.just_pressed(key) {
-            let d = wind.config().direction;
-            let _ = wind.set_direction(Vec2::from_angle(angle).rotate(d));
+            settings.direction = Vec2::from_angle(angle).rotate(settings.direction);
         }
     }
     if keys.just_pressed(KeyCode::KeyE) {
-        let temporal = match wind.config().temporal {
+        settings.temporal = match settings.temporal {
             TemporalMode::Frozen => TemporalMode::Evolving {
                 samples: 32,
                 period: 60.0,
             },
             TemporalMode::Evolving { .. } => TemporalMode::Frozen,
         };
-        let mut config = wind.config().clone();
-        config.temporal = temporal;
-        let time = wind.time();
-        if let Ok(mut field) = WindField::new(config) {
-            field.advance(time);
-            *wind = field;
-        }
     }
     if keys.just_pressed(KeyCode::Space) {
         wind.paused = !wind.paused;

@@ -1,16 +1,187 @@
-#![doc = include_str!("../README.md")]
+//! Wind for the [Bevy](https://bevy.org) game engine, from three papers: a wind field with
+//! log-law mean wind and 1/f^β turbulence, falling leaves, paper and coins that move the way the
+//! free-fall paper describes, flags and curtains that flap with travelling waves, and per-face
+//! lift and drag for rigid plates, particle cloth and avian3d bodies. Equations are cited by
+//! their number in the papers (`free-fall-motion-synthesis`, `fourier-descriptor-cloth-flapping`,
+//! `aerodynamic-lift-and-drag`).
+//!
+//! # Contents
+//!
+//! - [Getting started](#getting-started)
+//! - [The wind](#the-wind): [`wind`]
+//! - [Falling objects](#falling-objects): [`freefall`]
+//! - [Cloth](#cloth): [`cloth`]
+//! - [Aerodynamic bodies](#aerodynamic-bodies): [`aero`]
+//! - [Scheduling and smooth motion](#scheduling-and-smooth-motion)
+//! - [Live settings, reflection and the inspector](#live-settings-reflection-and-the-inspector)
+//! - [Errors](#errors)
+//! - [Determinism and multiplayer](#determinism-and-multiplayer)
+//! - [Browsers (wasm)](#browsers-wasm)
+//! - [Cargo features](#cargo-features)
+//!
+//! # Getting started
+//!
+//! Add [`WindfallPlugins`] and spawn what the wind should move; everything is positioned by its
+//! [`Transform`](bevy::transform::components::Transform).
+//!
+//! ```
+//! use bevy::prelude::*;
+//! use bevy_windfall::freefall::FallPreset;
+//! use bevy_windfall::prelude::*;
+//!
+//! let mut app = App::new();
+//! app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+//! // A maple leaf let go from a branch and a flag on a pole, 5 m/s of wind at 10 m.
+//! app.world_mut().resource_mut::<WindSettings>().reference_speed = 5.0;
+//! let leaf = app
+//!     .world_mut()
+//!     .spawn((FallPreset::MapleLeaf.object(), Transform::from_xyz(0.0, 5.0, 0.0)))
+//!     .id();
+//! app.world_mut().spawn((
+//!     Cloth { params: ClothPreset::FlagGentleFrozen.params(), ..default() },
+//!     Transform::from_xyz(2.0, 6.0, 0.0),
+//! ));
+//! app.update();
+//! // Set up in the frame it was spawned: its regime and first motion are known.
+//! let state = app.world().get::<FallState>(leaf).unwrap();
+//! assert!(state.motion().is_some());
+//! ```
+//!
+//! Every plugin is opt-in: add the group, a single plugin, or
+//! `WindfallPlugins.build().disable::<ClothPlugin>()`. The windowed scenes are examples
+//! (`cargo run --example showcase --features example_scenes,egui`).
+//!
+//! # The wind
+//!
+//! [`WindField`](wind::WindField) is a resource: U(h) = (u*/κ) ln(h/z0) (eq. 10) plus
+//! turbulence with a 1/f^β spectrum (eq. 11, 13) synthesised by inverse FFT, with per-axis
+//! amplitudes 1 : 0.88 : 0.55 (eq. 12), frozen (Taylor) or evolving, carried to other heights by
+//! eq. 14. Anything can sample it: `wind.velocity(p)`, `wind.velocity_at(p, t)`, or many points
+//! at once with `wind.velocities_at(&points, t, &mut out)`. [`WindPlugin`](wind::WindPlugin)
+//! inserts it and advances its clock; [`WindSettings`](wind::WindSettings) changes it live.
+//!
+//! # Falling objects
+//!
+//! [`FallingObject`](freefall::FallingObject) (with [`FallPreset`](freefall::FallPreset)s for
+//! coins, paper, leaves, cards and samaras): the Reynolds number and I* place it in the paper's
+//! phase diagram (Fig. 2), its main motion bounds a Markov chain over the six primitive motions
+//! (§2.1), fluttering, chaotic and tumbling swings come from a clustered trajectory database of
+//! eq. 5 segments searched as §2.3 describes, helix and spiral from eq. 6, and the wind carries
+//! it through its own response time (§4.3). [`FallState`](freefall::FallState) tells its
+//! motion; [`Landed`](freefall::Landed) is sent when it reaches the ground.
+//!
+//! # Cloth
+//!
+//! [`Cloth`](cloth::Cloth): flags, banners and curtains whose yarns are P-type Fourier
+//! descriptors driven by 1/f^β noise (§3–4 of the cloth paper), with every row of Table 1 as a
+//! [`ClothPreset`](cloth::ClothPreset). The mesh is written in place each frame.
+//!
+//! # Aerodynamic bodies
+//!
+//! [`AeroBody`](aero::AeroBody) (a rigid plate), [`PhysicalCloth`](aero::PhysicalCloth) (XPBD
+//! particle cloth) and, with the `avian` feature, `AvianAero` on avian3d rigid bodies, all moved
+//! by the per-face lift and drag law [`face_force`](aero::face_force) (eq. 3.1 of the aero
+//! paper).
+//!
+//! # Scheduling and smooth motion
+//!
+//! The simulation runs in [`FixedUpdate`] (or the schedule given to [`WindfallPlugins::new`]),
+//! in public sets you can order your own systems against ([`WindfallSystems`]):
+//! `Prepare` (before the fixed loop: live settings are taken in), `Wind` (the wind clock),
+//! `Simulate` (everything the wind moves) and `WriteBack` (in [`PostUpdate`], before transform
+//! propagation: new objects are released, bodies posed, meshes written). Bodies moved on the
+//! fixed step are posed between their last two steps by the frame's overstep, as avian
+//! interpolates, so motion is smooth at any frame rate; the pose lags the simulation by up to
+//! one fixed step. An entity spawned in a frame is set up by an observer the moment its
+//! component is inserted.
+//!
+//! ```
+//! use bevy::prelude::*;
+//! use bevy_windfall::prelude::*;
+//!
+//! fn my_fan(wind: Res<WindField>) { /* sample the wind after its clock advanced */ }
+//!
+//! App::new()
+//!     .add_plugins((MinimalPlugins, WindfallPlugins))
+//!     .add_systems(FixedUpdate, my_fan.in_set(WindfallSystems::Simulate));
+//! ```
+//!
+//! # Live settings, reflection and the inspector
+//!
+//! Every user-facing component and resource derives `Reflect` (with `ReflectComponent` or
+//! `ReflectResource`, `Default` and `Debug` where they apply) and is registered by its plugin,
+//! so editors, inspectors and scene files see them. Settings are data the plugins follow:
+//! edit [`WindSettings`](wind::WindSettings) (speed and direction apply at once, turbulence
+//! changes rebuild in the background and land a fixed number of steps later, edits made
+//! meanwhile are merged), a [`FallingObject`](freefall::FallingObject) (it is released again)
+//! or a [`Cloth`](cloth::Cloth) (it is rebuilt). Debug drawing is in `WindfallDebugPlugin`
+//! (feature `gizmos`), off until enabled in the `GizmoConfigStore`; a drop-in egui panel is in
+//! `inspector::WindfallInspectorPlugin` (feature `egui`).
+//!
+//! # Errors
+//!
+//! A bad value is a typed error that names the field: constructors return
+//! [`WindError`](wind::WindError), [`FreeFallError`](freefall::FreeFallError),
+//! [`ClothError`](cloth::ClothError) or [`AeroError`](aero::AeroError). A bad component at run
+//! time gets an `…Invalid` component holding its error
+//! ([`FallingObjectInvalid`](freefall::FallingObjectInvalid),
+//! [`ClothInvalid`](cloth::ClothInvalid), [`PhysicalClothInvalid`](aero::PhysicalClothInvalid)),
+//! logged once with `warn!`, and stays still; fixing the component clears it. A plugin never
+//! panics on bad settings: it logs an error and leaves the part out.
+//!
+//! # Determinism and multiplayer
+//!
+//! Randomness comes from seeded PCG streams and the FFT from rustfft's scalar planner, so a
+//! seed gives the same bits on every machine and thread count; the simulation steps on the fixed
+//! timestep; a background wind rebuild lands at a fixed step, whatever the machine. With the
+//! `serde` feature a [`WindSnapshot`](wind::WindSnapshot) (settings, seed and clock) sent to a
+//! client rebuilds the same wind, bit for bit.
+//!
+//! # Browsers (wasm)
+//!
+//! The library builds for `wasm32-unknown-unknown` (checked in CI): it reads no clock but Bevy's
+//! `Time`, no file and no OS randomness, and needs no threads. One difference: a wind rebuild
+//! runs on Bevy's task pool, which in a browser cannot be waited for, so a rebuild that is late
+//! lands at the first fixed step after it is ready instead of at its fixed step.
+//!
+//! # Cargo features
+//!
+//! | feature | adds |
+//! |---|---|
+//! | *(none)* | everything above; Bevy with `default-features = false` |
+//! | `gizmos` | `WindfallDebugPlugin`: wind arrows, fall trails, cloth yarns |
+//! | `egui` | `inspector::WindfallInspectorPlugin`, a tuning panel (bevy_egui 0.42) |
+//! | `serde` | `Serialize`/`Deserialize` for the wind settings and [`WindSnapshot`](wind::WindSnapshot) |
+//! | `avian` | `AvianAero` and `AvianAeroPlugin` for avian3d 0.7 |
+//! | `example_scenes` | what the windowed examples need (renderer, window, UI) |
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
-use bevy::app::{App, FixedUpdate, PluginGroup, PluginGroupBuilder};
-use bevy::ecs::schedule::{IntoScheduleConfigs, SystemSet};
+/// The README's code blocks, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
+
+use bevy::app::{
+    App, FixedPostUpdate, FixedPreUpdate, FixedUpdate, Plugin, PluginGroup, PluginGroupBuilder,
+    PostUpdate, RunFixedMainLoop, RunFixedMainLoopSystems,
+};
+use bevy::ecs::reflect::ReflectResource;
+use bevy::ecs::resource::Resource;
+use bevy::ecs::schedule::{InternedScheduleLabel, IntoScheduleConfigs, ScheduleLabel, SystemSet};
+use bevy::reflect::std_traits::ReflectDefault;
 
 pub mod aero;
 pub mod cloth;
 pub mod freefall;
+#[cfg(feature = "egui")]
+pub mod inspector;
 pub mod spectrum;
 pub mod wind;
 
 /// The most used types.
 pub mod prelude {
+    #[cfg(feature = "gizmos")]
+    pub use crate::WindfallDebugPlugin;
     pub use crate::aero::{AeroBody, AeroCoefficients, AeroPlugin, AeroState, RigidPlate};
     pub use crate::cloth::{
         Cloth, ClothAttachment, ClothGrid, ClothParams, ClothPlugin, ClothPreset, ClothState,
@@ -21,46 +192,176 @@ pub mod prelude {
     };
     pub use crate::spectrum::fbm;
     pub use crate::wind::{
-        SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin,
+        SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin, WindSettings,
     };
-    pub use crate::{WindfallPlugins, WindfallSystems};
+    pub use crate::{WindfallPlugins, WindfallSchedule, WindfallSystems};
 }
 
-/// All of bevy_windfall's plugins. Add the group, a single plugin, or disable one:
-/// `WindfallPlugins.build().disable::<WindPlugin>()`.
+/// All of bevy_windfall's plugins, simulating in [`FixedUpdate`]. Add the group, a single
+/// plugin, or disable one: `WindfallPlugins.build().disable::<WindPlugin>()`; simulate in another
+/// schedule with [`WindfallPlugins::new`].
 ///
 /// [`WindPlugin`]: wind::WindPlugin
 pub struct WindfallPlugins;
 
-impl PluginGroup for WindfallPlugins {
-    fn build(self) -> PluginGroupBuilder {
-        let group = PluginGroupBuilder::start::<Self>()
-            .add(wind::WindPlugin::default())
-            .add(freefall::FreeFallPlugin)
-            .add(aero::AeroPlugin)
-            .add(cloth::ClothPlugin);
-        #[cfg(feature = "gizmos")]
-        let group = group
-            .add(wind::WindGizmosPlugin)
-            .add(freefall::FallGizmosPlugin)
-            .add(cloth::ClothGizmosPlugin);
-        group
+impl WindfallPlugins {
+    /// All the plugins, simulating (the [`WindfallSystems::Wind`] and
+    /// [`WindfallSystems::Simulate`] sets) in `schedule` instead of [`FixedUpdate`], as
+    /// avian's `PhysicsPlugins::new(schedule)` does. In a schedule other than the fixed ones the
+    /// step is the frame's and poses are not interpolated.
+    // `WindfallPlugins` stays a unit struct (`add_plugins(WindfallPlugins)`), so the
+    // schedule-carrying group is a type of its own.
+    #[allow(clippy::new_ret_no_self)]
+    pub fn new(schedule: impl ScheduleLabel) -> WindfallPluginsIn {
+        WindfallPluginsIn {
+            schedule: schedule.intern(),
+        }
     }
 }
 
-/// System sets of the simulation, run in this order in `FixedUpdate`.
+impl PluginGroup for WindfallPlugins {
+    fn build(self) -> PluginGroupBuilder {
+        WindfallPlugins::new(FixedUpdate).build()
+    }
+}
+
+/// Debug drawing (feature `gizmos`), added by you, like avian's `PhysicsDebugPlugin`: wind
+/// arrows ([`wind::WindGizmos`]), fall trails ([`freefall::FallGizmos`]) and cloth yarns
+/// ([`cloth::ClothGizmos`]), each a gizmo config group, all off until enabled in the
+/// `GizmoConfigStore`. Needs Bevy's gizmo plugin (in `DefaultPlugins`).
+#[cfg(feature = "gizmos")]
+pub struct WindfallDebugPlugin;
+
+#[cfg(feature = "gizmos")]
+impl Plugin for WindfallDebugPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_plugins((
+            wind::WindGizmosPlugin,
+            freefall::FallGizmosPlugin,
+            cloth::ClothGizmosPlugin,
+        ));
+    }
+}
+
+/// [`WindfallPlugins`] in a chosen schedule (see [`WindfallPlugins::new`]).
+pub struct WindfallPluginsIn {
+    schedule: InternedScheduleLabel,
+}
+
+impl PluginGroup for WindfallPluginsIn {
+    fn build(self) -> PluginGroupBuilder {
+        PluginGroupBuilder::start::<Self>()
+            .add(WindfallSchedulePlugin(self.schedule))
+            .add(wind::WindPlugin::default())
+            .add(freefall::FreeFallPlugin)
+            .add(aero::AeroPlugin)
+            .add(cloth::ClothPlugin)
+    }
+}
+
+/// Where the simulation runs (a resource; [`FixedUpdate`] when absent). Inserted by
+/// [`WindfallPlugins::new`]; insert it yourself before adding single plugins to move them.
+///
+/// # Example
+///
+/// ```
+/// use bevy::ecs::schedule::ScheduleLabel;
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// // Only the wind, stepped once per frame in `Update`.
+/// App::new()
+///     .insert_resource(WindfallSchedule(Update.intern()))
+///     .add_plugins((MinimalPlugins, WindPlugin::default()));
+/// ```
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Eq, bevy::reflect::Reflect)]
+#[reflect(opaque, Resource, Default, Debug)]
+pub struct WindfallSchedule(pub InternedScheduleLabel);
+
+impl Default for WindfallSchedule {
+    fn default() -> Self {
+        Self(FixedUpdate.intern())
+    }
+}
+
+impl WindfallSchedule {
+    /// Whether the schedule runs on the fixed timestep, so poses between steps are
+    /// interpolated.
+    pub fn is_fixed(&self) -> bool {
+        [
+            FixedPreUpdate.intern(),
+            FixedUpdate.intern(),
+            FixedPostUpdate.intern(),
+        ]
+        .contains(&self.0)
+    }
+}
+
+/// Inserts a [`WindfallSchedule`].
+struct WindfallSchedulePlugin(InternedScheduleLabel);
+
+impl Plugin for WindfallSchedulePlugin {
+    fn build(&self, app: &mut App) {
+        app.register_type::<WindfallSchedule>()
+            .insert_resource(WindfallSchedule(self.0));
+    }
+}
+
+/// The crate's system sets, public ordering points for your own systems.
+///
+/// | set | schedule | what |
+/// |---|---|---|
+/// | `Prepare` | `RunFixedMainLoop`, before the fixed loop | live wind settings are taken in |
+/// | `Wind` | the simulation schedule ([`FixedUpdate`]) | a rebuilt field lands; the wind clock advances |
+/// | `Simulate` | the simulation schedule, after `Wind` | falling objects, cloth, aero bodies move |
+/// | `WriteBack` | [`PostUpdate`], before transform propagation | objects are released and posed, meshes written |
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum WindfallSystems {
+    /// Before the fixed loop: what the frame changed is taken in.
+    Prepare,
     /// Advance the wind clock.
     Wind,
     /// Move the objects the wind acts on.
     Simulate,
+    /// After the simulation, before transform propagation: poses and meshes.
+    WriteBack,
+}
+
+/// The schedule the simulation runs in.
+pub(crate) fn simulation_schedule(app: &App) -> InternedScheduleLabel {
+    app.world()
+        .get_resource::<WindfallSchedule>()
+        .copied()
+        .unwrap_or_default()
+        .0
 }
 
 /// Orders the sets; idempotent, so every plugin may call it.
 fn configure_sets(app: &mut App) {
-    app.configure_sets(
-        FixedUpdate,
-        (WindfallSystems::Wind, WindfallSystems::Simulate).chain(),
-    );
+    let schedule = simulation_schedule(app);
+    app.init_resource::<WindfallSchedule>()
+        .configure_sets(
+            schedule,
+            (WindfallSystems::Wind, WindfallSystems::Simulate).chain(),
+        )
+        .configure_sets(
+            RunFixedMainLoop,
+            WindfallSystems::Prepare.in_set(RunFixedMainLoopSystems::BeforeFixedMainLoop),
+        )
+        .configure_sets(
+            PostUpdate,
+            WindfallSystems::WriteBack.before(bevy::transform::TransformSystems::Propagate),
+        );
+}
+
+/// How far the frame is into the next fixed step (0 to 1), or 1 if the simulation does not run
+/// on the fixed timestep: where to pose bodies between their last two steps.
+pub(crate) fn overstep(
+    schedule: Option<&WindfallSchedule>,
+    time: Option<&bevy::time::Time<bevy::time::Fixed>>,
+) -> f32 {
+    match (schedule.copied().unwrap_or_default().is_fixed(), time) {
+        (true, Some(time)) => time.overstep_fraction(),
+        _ => 1.0,
+    }
 }

@@ -154,7 +154,11 @@ fn invalid_objects_report_their_error_and_stay_put() {
     let (mut app, entities) = fall_app(None, &[bad], 0.0);
     app.update();
     let state = app.world().get::<FallState>(entities[0]).unwrap();
-    assert_eq!(state.error().unwrap().field(), "density");
+    let invalid = app
+        .world()
+        .get::<FallingObjectInvalid>(entities[0])
+        .unwrap();
+    assert_eq!(invalid.0.field(), "density");
     assert!(state.path().is_none());
     assert_eq!(
         app.world()
@@ -164,6 +168,27 @@ fn invalid_objects_report_their_error_and_stay_put() {
             .y,
         2.0
     );
+    // Fixed, it falls and the error goes.
+    app.world_mut()
+        .get_mut::<FallingObject>(entities[0])
+        .unwrap()
+        .density = 8_000.0;
+    // Released at the next write-back; shown one fixed step behind (interpolation).
+    for _ in 0..3 {
+        app.update();
+    }
+    assert!(
+        app.world()
+            .get::<FallingObjectInvalid>(entities[0])
+            .is_none()
+    );
+    let y = app
+        .world()
+        .get::<Transform>(entities[0])
+        .unwrap()
+        .translation
+        .y;
+    assert!(y < 2.0, "{y}");
 }
 
 #[test]

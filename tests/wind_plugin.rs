@@ -64,7 +64,7 @@ fn plugins_are_opt_in() {
 }
 
 #[test]
-fn a_background_rebuild_swaps_in_the_new_field_and_keeps_the_clock() {
+fn a_background_rebuild_lands_at_its_step_and_keeps_the_clock() {
     use bevy_windfall::wind::{WindRebuild, WindRebuilt};
     let mut app = headless_app();
     app.add_plugins(WindPlugin::new(config()));
@@ -93,18 +93,17 @@ fn a_background_rebuild_swaps_in_the_new_field_and_keeps_the_clock() {
         beta: 3.0,
         ..config()
     };
-    app.insert_resource(WindRebuild::start(next.clone()).unwrap());
-    // Frames keep coming while it builds; each advances the old clock.
-    let mut frames = 0;
-    while app.world().contains_resource::<WindRebuild>() {
+    app.insert_resource(WindRebuild::start(next.clone()).unwrap().with_steps(12));
+    // Frames keep coming while it builds; each advances the old clock. It lands at its step.
+    for step in 1..=12 {
         app.update();
-        frames += 1;
-        assert!(frames < 10_000, "the rebuild never finished");
+        let landed = !app.world().contains_resource::<WindRebuild>();
+        assert_eq!(landed, step == 12, "step {step}");
     }
     let wind = app.world().resource::<WindField>();
     assert_eq!(wind.config(), &next);
-    // The clock went on: 5 steps at full speed, then `frames` at half.
-    let expected = STEP.as_secs_f32() * (5.0 + time_scale * frames as f32);
+    // The clock went on: 5 steps at full speed, then 12 at half.
+    let expected = STEP.as_secs_f32() * (5.0 + time_scale * 12.0);
     assert!(
         (wind.time() - expected).abs() < 1e-4,
         "{} vs {expected}",
@@ -114,4 +113,130 @@ fn a_background_rebuild_swaps_in_the_new_field_and_keeps_the_clock() {
     assert_ne!(wind.velocity(Vec3::new(3.0, 2.0, 1.0)), old);
     let messages = app.world().resource::<Messages<WindRebuilt>>();
     assert_eq!(messages.iter_current_update_messages().count(), 1);
+}
+
+/// An app with the wind, one fixed step per update, its settings' speed read back.
+fn settings_app() -> App {
+    let mut app = headless_app();
+    app.add_plugins(WindPlugin::new(config()));
+    ready(&mut app);
+    app
+}
+
+#[test]
+fn settings_apply_speed_at_once_and_the_rest_by_a_rebuild_that_keeps_later_edits() {
+    let mut app = settings_app();
+    // Speed and direction: on the next step.
+    {
+        let mut s = app.world_mut().resource_mut::<WindSettings>();
+        s.reference_speed = 9.0;
+        s.direction = Vec2::new(0.0, 1.0);
+    }
+    app.update();
+    let wind = app.world().resource::<WindField>();
+    assert_eq!(wind.config().reference_speed, 9.0);
+    assert!((wind.direction() - Vec3::Z).length() < 1e-6);
+    // β needs a rebuild; while it builds, the speed changes twice (settings, then directly).
+    app.world_mut().resource_mut::<WindSettings>().beta = 3.0;
+    app.update();
+    assert!(
+        app.world()
+            .contains_resource::<bevy_windfall::wind::WindRebuild>()
+    );
+    app.world_mut()
+        .resource_mut::<WindSettings>()
+        .reference_speed = 3.0;
+    app.update();
+    assert_eq!(
+        app.world().resource::<WindField>().config().reference_speed,
+        3.0
+    );
+    app.world_mut()
+        .resource_mut::<WindField>()
+        .set_reference_speed(4.0)
+        .unwrap();
+    // A second turbulence edit while the first builds: the last one wins.
+    app.world_mut().resource_mut::<WindSettings>().seed = 77;
+    for _ in 0..2 * bevy_windfall::wind::REBUILD_STEPS {
+        app.update();
+    }
+    let wind = app.world().resource::<WindField>();
+    assert_eq!(wind.config().beta, 3.0);
+    assert_eq!(wind.config().seed, 77);
+    assert_eq!(
+        wind.config().reference_speed,
+        4.0,
+        "the direct edit is kept"
+    );
+    assert!((wind.direction() - Vec3::Z).length() < 1e-6);
+    assert_eq!(
+        app.world().resource::<WindSettings>().config,
+        *wind.config()
+    );
+}
+
+#[test]
+fn a_bad_setting_is_refused_and_the_wind_keeps_blowing() {
+    let mut app = settings_app();
+    app.world_mut().resource_mut::<WindSettings>().roughness = -1.0;
+    for _ in 0..3 {
+        app.update();
+    }
+    assert!(
+        !app.world()
+            .contains_resource::<bevy_windfall::wind::WindRebuild>()
+    );
+    assert_eq!(app.world().resource::<WindField>().config(), &config());
+    // And a plugin given a bad configuration logs it and inserts no field: no panic.
+    let mut app = headless_app();
+    app.add_plugins(WindPlugin::new(WindConfig {
+        beta: f32::NAN,
+        ..config()
+    }));
+    ready(&mut app);
+    assert!(!app.world().contains_resource::<WindField>());
+}
+
+/// The velocity bits at a point after `steps` steps, with a rebuild requested at step 3.
+fn rebuilt_run(slow: bool) -> Vec<u32> {
+    let mut app = settings_app();
+    let mut bits = Vec::new();
+    for step in 0..60 {
+        if step == 3 {
+            app.world_mut().resource_mut::<WindSettings>().seed = 5;
+        }
+        if slow && step == 4 {
+            // A slow frame: the rebuild is ready long before its step; it still lands then.
+            std::thread::sleep(std::time::Duration::from_millis(300));
+        }
+        app.update();
+        let v = app
+            .world()
+            .resource::<WindField>()
+            .velocity(Vec3::new(1.0, 3.0, 2.0));
+        bits.extend(v.to_array().map(f32::to_bits));
+    }
+    bits
+}
+
+#[test]
+fn rebuilds_land_at_the_same_step_however_long_frames_take() {
+    assert_eq!(rebuilt_run(false), rebuilt_run(true));
+}
+
+#[test]
+fn a_field_inserted_during_a_rebuild_wins() {
+    let mut app = settings_app();
+    app.world_mut().resource_mut::<WindSettings>().beta = 2.5;
+    app.update();
+    let mine = WindField::new(WindConfig {
+        seed: 1234,
+        ..config()
+    })
+    .unwrap();
+    app.insert_resource(mine);
+    for _ in 0..2 * bevy_windfall::wind::REBUILD_STEPS {
+        app.update();
+    }
+    assert_eq!(app.world().resource::<WindField>().config().seed, 1234);
 }

@@ -125,6 +125,7 @@ fn setup(
     commands.spawn((
         coin(),
         Featured,
+        Name::new("coin"),
         Coin {
             trail: VecDeque::new(),
         },
@@ -194,7 +195,7 @@ fn rest_and_drop(
 fn show_info(coin: Single<(&FallingObject, &FallState), With<Coin>>, mut info: ResMut<SceneInfo>) {
     let (object, state) = *coin;
     let Some(r) = state.regime() else {
-        info.0 = format!("invalid object: {:?}", state.error());
+        info.0 = "invalid object (see FallingObjectInvalid)".into();
         return;
     };
     let now = state

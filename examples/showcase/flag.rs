@@ -10,7 +10,7 @@ use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
 use bevy_windfall::cloth::{ClothWindModel, HarmonicFilter};
 use bevy_windfall::prelude::*;
 
-use super::{Scene, SceneInfo, place_camera};
+use super::{Scene, SceneInfo, common, place_camera};
 
 /// What hangs in the wind.
 #[derive(Resource, Clone, Copy, PartialEq, Eq, Debug, Default)]
@@ -166,8 +166,8 @@ fn setup(
         here.clone(),
     ));
     commands.spawn((
-        Mesh3d(meshes.add(Plane3d::default().mesh().size(60.0, 60.0))),
-        MeshMaterial3d(materials.add(Color::srgb(0.36, 0.55, 0.32))),
+        Mesh3d(meshes.add(common::grass(60.0, Color::srgb(0.36, 0.55, 0.32)))),
+        MeshMaterial3d(materials.add(Color::WHITE)),
         here.clone(),
     ));
     let metal = materials.add(Color::srgb(0.75, 0.75, 0.78));
@@ -220,6 +220,7 @@ fn setup(
     // The cloth's mesh and shape come from `apply_fabric`.
     commands.spawn((
         Hanging,
+        Name::new("flag"),
         MeshMaterial3d(materials.add(StandardMaterial {
             perceptual_roughness: 0.8,
             double_sided: true,

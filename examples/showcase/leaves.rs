@@ -159,7 +159,7 @@ fn setup(
             here.clone(),
         ));
         if i == 0 {
-            entity.insert(Featured);
+            entity.insert((Featured, Name::new("featured leaf")));
         }
     }
     // Physical leaves: rigid 7.3 × 4.2 cm plates, each face with lift and drag.

@@ -1,13 +1,13 @@
 //! The showcase: autumn leaves (procedural and physical), the paper's coin falling in water, a
 //! flag, banner or curtain, and a gallery of the free-fall paper's motions, in one app sharing
-//! one wind field. With `--features egui` a panel tunes the wind, the falling objects, the cloth
+//! one wind field. With `--features example_scenes,egui` the crate's inspector tunes the wind, the falling objects, the cloth
 //! and the aero bodies live.
 //!
 //! Keys: 1 leaves, 2 coin, 3 flag, 4 gallery · G gizmos (off, wind, paths and yarns, all) ·
 //! ↑/↓ wind speed · ←/→ wind direction · in the flag scene V flag/banner/curtain, F
 //! frozen/non-frozen.
 //!
-//! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag|gallery]
+//! `cargo run --example showcase --features example_scenes,egui -- [--scene leaves|coin|flag|gallery]
 //! [--fabric flag|banner|curtain] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`
 //!
 //! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits;
@@ -26,6 +26,7 @@ mod population;
 use std::path::PathBuf;
 
 use bevy::diagnostic::{DiagnosticsStore, FrameTimeDiagnosticsPlugin};
+use bevy::gizmos::config::GizmoConfigStore;
 use bevy::prelude::*;
 use bevy_windfall::cloth::ClothGizmos;
 use bevy_windfall::freefall::FallGizmos;
@@ -103,23 +104,8 @@ fn main() {
         seed: 5,
         ..default()
     })))
-    .add_plugins(FrameTimeDiagnosticsPlugin::default())
+    .add_plugins((FrameTimeDiagnosticsPlugin::default(), WindfallDebugPlugin))
     .insert_state(start)
-    .insert_resource(WindGizmos {
-        enabled: false,
-        center: Vec2::new(2.0, 0.0),
-        half_extent: Vec2::new(10.0, 6.0),
-        height: 1.5,
-        ..default()
-    })
-    .insert_resource(FallGizmos {
-        enabled: args.rest.iter().any(|a| a == "--gizmos"),
-        ..default()
-    })
-    .insert_resource(ClothGizmos {
-        enabled: args.rest.iter().any(|a| a == "--gizmos"),
-        ..default()
-    })
     .init_resource::<SceneInfo>()
     .add_plugins((leaves::plugin, coin::plugin, flag::plugin, gallery::plugin))
     .add_systems(Update, (switch_scene, toggle_gizmos, steer_wind, show_hud));
@@ -138,6 +124,17 @@ fn main() {
     app.add_plugins(panel::plugin);
     // The camera and the header text outlive the scenes; each scene places the camera when it
     // is entered, which for the first scene happens before `Startup`.
+    let paths = args.rest.iter().any(|a| a == "--gizmos");
+    let mut store = app.world_mut().resource_mut::<GizmoConfigStore>();
+    let (_, wind) = store.config_mut::<WindGizmos>();
+    *wind = WindGizmos {
+        center: Vec2::new(2.0, 0.0),
+        half_extent: Vec2::new(10.0, 6.0),
+        height: 1.5,
+        ..default()
+    };
+    store.config_mut::<FallGizmos>().0.enabled = paths;
+    store.config_mut::<ClothGizmos>().0.enabled = paths;
     app.world_mut().spawn(Camera3d::default());
     app.world_mut().spawn((Hud, common::info_text()));
     app.run();
@@ -162,24 +159,21 @@ fn switch_scene(keys: Res<ButtonInput<KeyCode>>, mut next: ResMut<NextState<Scen
 }
 
 /// G cycles: off → wind arrows → falling paths and cloth yarns → everything.
-fn toggle_gizmos(
-    keys: Res<ButtonInput<KeyCode>>,
-    mut wind: ResMut<WindGizmos>,
-    mut falls: ResMut<FallGizmos>,
-    mut cloth: ResMut<ClothGizmos>,
-) {
+fn toggle_gizmos(keys: Res<ButtonInput<KeyCode>>, mut store: ResMut<GizmoConfigStore>) {
     if keys.just_pressed(KeyCode::KeyG) {
-        let level = u8::from(wind.enabled) + 2 * u8::from(falls.enabled);
-        let next = (level + 1) % 4;
-        wind.enabled = next & 1 != 0;
-        falls.enabled = next & 2 != 0;
-        cloth.enabled = falls.enabled;
+        let wind = store.config::<WindGizmos>().0.enabled;
+        let falls = store.config::<FallGizmos>().0.enabled;
+        let next = (u8::from(wind) + 2 * u8::from(falls) + 1) % 4;
+        store.config_mut::<WindGizmos>().0.enabled = next & 1 != 0;
+        store.config_mut::<FallGizmos>().0.enabled = next & 2 != 0;
+        store.config_mut::<ClothGizmos>().0.enabled = next & 2 != 0;
     }
 }
 
-fn steer_wind(keys: Res<ButtonInput<KeyCode>>, mut wind: ResMut<WindField>, time: Res<Time>) {
+/// The arrow keys edit [`WindSettings`]: speed and direction apply on the next fixed step.
+fn steer_wind(keys: Res<ButtonInput<KeyCode>>, mut wind: ResMut<WindSettings>, time: Res<Time>) {
     let dt = time.delta_secs();
-    let speed = wind.config().reference_speed;
+    let speed = wind.reference_speed;
     let change = if keys.pressed(KeyCode::ArrowUp) {
         3.0 * dt
     } else if keys.pressed(KeyCode::ArrowDown) {
@@ -188,7 +182,7 @@ fn steer_wind(keys: Res<ButtonInput<KeyCode>>, mut wind: ResMut<WindField>, time
         0.0
     };
     if change != 0.0 {
-        let _ = wind.set_reference_speed((speed + change).clamp(0.0, 70.0));
+        wind.reference_speed = (speed + change).clamp(0.0, 70.0);
     }
     let turn = if keys.pressed(KeyCode::ArrowLeft) {
         dt
@@ -198,8 +192,7 @@ fn steer_wind(keys: Res<ButtonInput<KeyCode>>, mut wind: ResMut<WindField>, time
         0.0
     };
     if turn != 0.0 {
-        let d = wind.config().direction;
-        let _ = wind.set_direction(Vec2::from_angle(turn).rotate(d));
+        wind.direction = Vec2::from_angle(turn).rotate(wind.direction);
     }
 }
 

@@ -2,15 +2,16 @@
 
 use avian3d::prelude::ReadRigidBodyForces;
 use avian3d::prelude::{ComputedCenterOfMass, ComputedMass, Forces, WriteRigidBodyForces};
-use bevy::app::{App, FixedUpdate, Plugin};
+use bevy::app::{App, FixedPostUpdate, Plugin};
 use bevy::ecs::prelude::*;
+use bevy::ecs::schedule::{InternedScheduleLabel, ScheduleLabel};
 use bevy::math::Vec3;
 use bevy::mesh::{Indices, Mesh, VertexAttributeValues};
-use bevy::time::{Fixed, Time};
+use bevy::reflect::Reflect;
+use bevy::time::Time;
 
 use super::force::face_force;
 use super::plate::{AeroCoefficients, AeroError, Face};
-use crate::WindfallSystems;
 use crate::wind::WindField;
 
 /// Per-face lift and drag for an avian3d rigid body: put it beside `RigidBody::Dynamic` and a
@@ -21,7 +22,27 @@ use crate::wind::WindField;
 /// (dt × ρ C_D A |v_rel| / m above about 2). The plugin therefore caps the aerodynamic force so
 /// that in one step it can change the body's velocity by at most its velocity relative to the
 /// air at its centre of mass: drag can stop a body relative to the wind, never fling it past.
-#[derive(Component, Clone, Debug)]
+///
+/// # Example
+///
+/// ```
+/// use avian3d::prelude::*;
+/// use bevy::prelude::*;
+/// use bevy_windfall::aero::{AeroCoefficients, AvianAero};
+///
+/// // A 40 × 40 cm kite-like board that avian moves and the wind lifts.
+/// let mesh = Mesh::from(Plane3d::default().mesh().size(0.4, 0.4));
+/// let board = (
+///     RigidBody::Dynamic,
+///     Collider::cuboid(0.4, 0.005, 0.4),
+///     AvianAero::from_mesh(&mesh, AeroCoefficients::default())?,
+///     Transform::from_xyz(0.0, 10.0, 0.0),
+/// );
+/// # let _ = board;
+/// # Ok::<(), bevy_windfall::aero::AeroError>(())
+/// ```
+#[derive(Component, Clone, Debug, Reflect)]
+#[reflect(Component, Debug)]
 pub struct AvianAero {
     /// Faces in the body's local frame.
     pub faces: Vec<Face>,
@@ -71,21 +92,44 @@ impl AvianAero {
     }
 }
 
-/// Applies [`AvianAero`] forces in `FixedUpdate` ([`WindfallSystems::Simulate`]), before avian's
-/// step in `FixedPostUpdate`. Add it beside `PhysicsPlugins`.
-pub struct AvianAeroPlugin;
+/// Applies [`AvianAero`] forces right before avian's physics step: in avian's schedule
+/// (`FixedPostUpdate`, as `PhysicsPlugins::default()`), in `PhysicsSystems::First`, and after the
+/// wind's clock has advanced ([`WindfallSystems::Wind`](crate::WindfallSystems::Wind) runs in `FixedUpdate`, earlier in the
+/// same fixed step). Add it beside `PhysicsPlugins`; if you run avian in another schedule, use
+/// [`AvianAeroPlugin::new`] with the same one.
+pub struct AvianAeroPlugin {
+    schedule: InternedScheduleLabel,
+}
+
+impl Default for AvianAeroPlugin {
+    fn default() -> Self {
+        Self::new(FixedPostUpdate)
+    }
+}
+
+impl AvianAeroPlugin {
+    /// Forces applied in `schedule`, the one avian's `PhysicsPlugins::new` was given.
+    pub fn new(schedule: impl ScheduleLabel) -> Self {
+        Self {
+            schedule: schedule.intern(),
+        }
+    }
+}
 
 impl Plugin for AvianAeroPlugin {
     fn build(&self, app: &mut App) {
         crate::configure_sets(app);
-        app.add_systems(FixedUpdate, apply_aero.in_set(WindfallSystems::Simulate));
+        app.register_type::<AvianAero>().add_systems(
+            self.schedule,
+            apply_aero.in_set(avian3d::schedule::PhysicsSystems::First),
+        );
     }
 }
 
 fn apply_aero(
     mut bodies: Query<(&AvianAero, Forces, &ComputedCenterOfMass, &ComputedMass)>,
     wind: Option<Res<WindField>>,
-    time: Res<Time<Fixed>>,
+    time: Res<Time>,
 ) {
     let dt = time.delta_secs();
     let wind = wind.as_deref();

@@ -8,7 +8,7 @@ use super::plate::{AeroCoefficients, AeroError};
 use crate::cloth::ClothGrid;
 
 /// Which nodes hold still.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bevy::reflect::Reflect)]
 pub enum Pinning {
     /// The first column (a flag on a pole).
     PoleColumn,

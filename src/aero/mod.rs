@@ -23,7 +23,7 @@ mod plugin;
 #[cfg(feature = "avian")]
 pub use avian::{AvianAero, AvianAeroPlugin};
 pub use cloth::{CLOTH_MAX_SUBSTEPS, ParticleCloth, Pinning};
-pub use force::{AIR_DENSITY, WATER_DENSITY, drag_rate, face_force};
+pub use force::{AIR_DENSITY, WATER_DENSITY, face_force};
 pub use plate::{
     AeroCoefficients, AeroError, Face, LIFT_STEP, MAX_SUBSTEPS, PlateState, RigidPlate,
 };

@@ -2,12 +2,13 @@
 //! falling leaf, card or coin.
 
 use bevy::math::{Mat3, Quat, Vec3};
+use bevy::reflect::Reflect;
 use thiserror::Error;
 
 use super::force::{drag_rate, face_force};
 
 /// Fluid and coefficients of a body.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct AeroCoefficients {
     /// C_D (≥ 0). A flat plate broadside: about 1.2.
     pub drag: f32,
@@ -29,7 +30,7 @@ impl Default for AeroCoefficients {
 }
 
 /// Why a body was rejected.
-#[derive(Clone, Copy, Debug, PartialEq, Error)]
+#[derive(Clone, Copy, Debug, PartialEq, Error, Reflect)]
 pub enum AeroError {
     /// A number outside its valid range.
     #[error("`{field}` = {value}: {reason}")]
@@ -89,7 +90,7 @@ impl AeroCoefficients {
 }
 
 /// One face of a body, in the body's frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct Face {
     /// Centre, m.
     pub center: Vec3,
@@ -100,7 +101,7 @@ pub struct Face {
 }
 
 /// A rigid plate: faces, mass, principal moments of inertia (body axes), coefficients.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Reflect)]
 pub struct RigidPlate {
     faces: Vec<Face>,
     mass: f32,
@@ -109,7 +110,7 @@ pub struct RigidPlate {
 }
 
 /// Position, velocity, orientation and angular velocity (world frame).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct PlateState {
     /// Centre of mass, m.
     pub position: Vec3,

@@ -52,7 +52,7 @@ pub fn bend_angles(total: &[f32]) -> Vec<f32> {
 
 /// Which harmonics of the descriptor survive. The mean direction (k = 0) always does; a harmonic
 /// `k` and its mirror `n − k` are kept or dropped together, so a straight yarn stays straight.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, bevy::reflect::Reflect)]
 pub enum HarmonicFilter {
     /// Keep every harmonic: the yarn follows the angles exactly.
     #[default]

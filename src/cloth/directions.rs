@@ -154,17 +154,6 @@ impl DirectionSheet {
         (self.frames, self.rows, self.columns)
     }
 
-    /// Fills `out[j]` with the unit direction at (frame, row, first + j · step), interpolated
-    /// linearly on every axis (wrapping) and normalised.
-    pub fn sample_line(&self, frame: f64, row: f64, first: f64, step: f64, out: &mut [Vec2]) {
-        let mut taps = Vec::new();
-        self.column_taps(first, step, out.len(), &mut taps);
-        self.blend_line(frame, row, &taps, out);
-        for o in out.iter_mut() {
-            *o = o.normalize_or(Vec2::X);
-        }
-    }
-
     /// The columns a line read from `first` in steps of `step` falls between, `count` of them:
     /// (left column, right column, weight of the right one). Yarns read with the same offsets
     /// share them.

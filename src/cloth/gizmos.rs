@@ -13,35 +13,38 @@ use bevy::transform::components::GlobalTransform;
 
 use super::{Cloth, ClothState};
 
-/// Draws every [`Cloth`]'s yarns while [`ClothGizmos::enabled`].
+/// Draws every [`Cloth`]'s yarns when the [`ClothGizmos`] gizmo group is enabled (off by
+/// default; part of [`WindfallDebugPlugin`](crate::WindfallDebugPlugin)).
 pub struct ClothGizmosPlugin;
 
 impl Plugin for ClothGizmosPlugin {
     fn build(&self, app: &mut App) {
         // The yarns lie on the cloth's surface: drawn slightly in front so it does not hide them.
         let config = GizmoConfig {
+            enabled: false,
             depth_bias: -0.01,
             ..Default::default()
         };
-        app.insert_gizmo_config(YarnGizmos, config);
-        app.init_resource::<ClothGizmos>().add_systems(
-            PostUpdate,
-            draw_yarns
-                .after(TransformSystems::Propagate)
-                .run_if(|g: Res<ClothGizmos>| g.enabled),
-        );
+        app.insert_gizmo_config(ClothGizmos::default(), config)
+            .add_systems(PostUpdate, draw_yarns.after(TransformSystems::Propagate));
     }
 }
 
-/// The gizmo group of the yarns (its own depth bias).
-#[derive(Default, Reflect, GizmoConfigGroup)]
-pub struct YarnGizmos;
-
-/// How [`ClothGizmosPlugin`] draws.
-#[derive(Resource, Clone, Debug)]
+/// The gizmo group of the yarns: which are drawn and in what colour.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::cloth::ClothGizmos;
+///
+/// fn show_yarns(mut store: ResMut<GizmoConfigStore>) {
+///     store.config_mut::<ClothGizmos>().0.enabled = true;
+/// }
+/// # let _ = show_yarns;
+/// ```
+#[derive(Clone, Debug, Reflect, GizmoConfigGroup)]
 pub struct ClothGizmos {
-    /// Draw at all (off by default).
-    pub enabled: bool,
     /// Draw every n-th yarn (≥ 1).
     pub every: usize,
     /// Yarn colour; the pole edge is drawn in black.
@@ -51,7 +54,6 @@ pub struct ClothGizmos {
 impl Default for ClothGizmos {
     fn default() -> Self {
         Self {
-            enabled: false,
             every: 2,
             color: Color::srgb(1.0, 0.9, 0.1),
         }
@@ -59,10 +61,13 @@ impl Default for ClothGizmos {
 }
 
 fn draw_yarns(
-    config: Res<ClothGizmos>,
     cloths: Query<(&ClothState, &GlobalTransform), With<Cloth>>,
-    mut gizmos: Gizmos<YarnGizmos>,
+    mut gizmos: Gizmos<ClothGizmos>,
 ) {
+    if !gizmos.config.enabled {
+        return;
+    }
+    let config = gizmos.config_ext.clone();
     for (state, at) in &cloths {
         let columns = state.sim.grid().columns;
         let points = state.sim.positions();

@@ -27,13 +27,13 @@ mod plugin;
 mod presets;
 mod sim;
 
-pub use constraints::{align_to_leading_yarn, pole_edge};
+pub use constraints::align_to_leading_yarn;
 pub use descriptor::{
     DescriptorFilter, HarmonicFilter, bend_angles, total_curvature, trace_yarn, yarn_from_angles,
 };
-pub use directions::{CELLS_PER_YARN, ColumnTap, DirectionSheet, LINE_YARNS};
+
 #[cfg(feature = "gizmos")]
-pub use gizmos::{ClothGizmos, ClothGizmosPlugin, YarnGizmos};
+pub use gizmos::{ClothGizmos, ClothGizmosPlugin};
 pub use measure::{FlapRecorder, FlapStats};
 pub use mesh::{cloth_mesh, write_cloth_mesh};
 pub use noise::NoiseSheet;

@@ -1,12 +1,13 @@
 //! The cloth's grid and the six interactive parameters of the cloth paper §5.2.
 
+use bevy::reflect::Reflect;
 use thiserror::Error;
 
 use super::descriptor::HarmonicFilter;
 
 /// The grid of a cloth: `rows` yarns (horizontal threads, top to bottom), each of `columns`
 /// nodes from the pole to the free edge, spanning `width × height` metres at rest.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct ClothGrid {
     /// Yarns, ≥ 1.
     pub rows: usize,
@@ -46,7 +47,7 @@ impl ClothGrid {
 }
 
 /// The yarn the others are aligned to by eq. 7 (the flattening line, §5.2 item 6).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Reflect)]
 pub enum LeadingYarn {
     /// The top edge.
     #[default]
@@ -70,7 +71,7 @@ impl LeadingYarn {
 
 /// Frozen (a 2-D noise matrix shifted each frame, §4.1) or non-frozen (a 3-D matrix sliced in
 /// time and shifted, §4.2) wind on the cloth.
-#[derive(Clone, Copy, Debug, PartialEq, bevy::reflect::Reflect)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub enum ClothWindModel {
     /// 2-D noise, shifted.
     Frozen,
@@ -86,7 +87,7 @@ pub enum ClothWindModel {
 /// How a cloth moves: the six interactive parameters of §5.2 plus the descriptor filter, the
 /// pole-edge elongation of eq. 8 and a seed. Shifts are in noise steps per frame at the paper's
 /// 50 frames per second, as in Table 1; the simulation converts them to steps per second.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct ClothParams {
     /// 1. Wind speed |v|: steps the noise travels along the yarns per frame.
     pub wind_speed: f32,
@@ -127,7 +128,7 @@ impl Default for ClothParams {
 }
 
 /// A cloth configuration field out of range; [`ClothError::field`] names it.
-#[derive(Clone, Debug, Error, PartialEq)]
+#[derive(Clone, Debug, Error, PartialEq, Reflect)]
 pub enum ClothError {
     /// A number outside its valid range.
     #[error("`{field}` = {value}: {reason}")]

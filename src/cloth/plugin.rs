@@ -1,10 +1,12 @@
 //! ECS glue: the [`Cloth`] component, its runtime [`ClothState`], and the [`ClothPlugin`].
 
-use bevy::app::{App, FixedUpdate, Plugin, PostUpdate, PreUpdate};
+use bevy::app::{App, Plugin, PostUpdate};
 use bevy::asset::Assets;
 use bevy::ecs::prelude::*;
 use bevy::math::{Quat, Vec3};
 use bevy::mesh::{Mesh, Mesh3d};
+use bevy::reflect::Reflect;
+use bevy::reflect::std_traits::ReflectDefault;
 use bevy::time::{Fixed, Time};
 use bevy::transform::components::{GlobalTransform, Transform};
 
@@ -18,7 +20,33 @@ use crate::wind::WindField;
 /// [`ClothAttachment`]); [`ClothPlugin`] adds a [`ClothState`] and a [`Mesh3d`] (when the app has
 /// `Assets<Mesh>`). Give the entity a material to see it. Changing the component rebuilds the
 /// cloth; an invalid one gets a [`ClothInvalid`] instead of a state.
-#[derive(Component, Clone, Debug, PartialEq)]
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// // A 1.5 × 1 m flag on a pole whose top is 6 m up, in the wind of the field.
+/// let flag = app
+///     .world_mut()
+///     .spawn((
+///         Cloth {
+///             grid: ClothGrid { rows: 16, columns: 24, width: 1.5, height: 1.0 },
+///             params: ClothPreset::FlagGentleFrozen.params(),
+///             ..default()
+///         },
+///         Transform::from_xyz(0.0, 6.0, 0.0),
+///     ))
+///     .id();
+/// app.update();
+/// let state = app.world().get::<ClothState>(flag).unwrap();
+/// assert_eq!(state.sim.positions().len(), 16 * 24);
+/// ```
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Default, Debug)]
 #[require(Transform)]
 pub struct Cloth {
     /// Size and resolution.
@@ -44,9 +72,29 @@ impl Default for Cloth {
 }
 
 /// Runtime state of a [`Cloth`]: the simulation and the direction the cloth streams in.
-#[derive(Component, Clone)]
+/// Reflected (yaw, |v|) for inspectors; the simulation itself is not.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// // The free edge's mid node, in the cloth's frame (yarns are stored row by row).
+/// fn tip(cloths: Query<(&Cloth, &ClothState)>) {
+///     for (cloth, state) in &cloths {
+///         let row = cloth.grid.rows / 2;
+///         let p = state.sim.positions()[row * cloth.grid.columns + cloth.grid.columns - 1];
+///         info!("free edge at {p}");
+///     }
+/// }
+/// # let _ = tip;
+/// ```
+#[derive(Component, Clone, Default, Reflect)]
+#[reflect(Component, Default, Debug, from_reflect = false)]
 pub struct ClothState {
     /// The shape over time.
+    #[reflect(ignore)]
     pub sim: ClothSim,
     /// Rotation about the pole (local Y), radians: the cloth turns to stream downwind.
     pub yaw: f32,
@@ -54,9 +102,36 @@ pub struct ClothState {
     pub wind_speed: f32,
 }
 
-/// Why a [`Cloth`] has no [`ClothState`].
-#[derive(Component, Clone, Debug, PartialEq)]
+/// Why a [`Cloth`] has no [`ClothState`] (logged once as a warning when it appears).
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// use bevy_windfall::cloth::ClothInvalid;
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// let bad = ClothGrid { columns: 1, ..default() };
+/// let cloth = app.world_mut().spawn(Cloth { grid: bad, ..default() }).id();
+/// app.update();
+/// assert_eq!(app.world().get::<ClothInvalid>(cloth).unwrap().0.field(), "grid.columns");
+/// ```
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Debug)]
 pub struct ClothInvalid(pub ClothError);
+
+impl std::fmt::Debug for ClothState {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ClothState")
+            .field("grid", self.sim.grid())
+            .field("yaw", &self.yaw)
+            .field("wind_speed", &self.wind_speed)
+            .finish_non_exhaustive()
+    }
+}
 
 /// Moves every [`Cloth`] on the fixed timestep and rewrites its mesh once per frame.
 pub struct ClothPlugin;
@@ -64,9 +139,19 @@ pub struct ClothPlugin;
 impl Plugin for ClothPlugin {
     fn build(&self, app: &mut App) {
         crate::configure_sets(app);
-        app.add_systems(PreUpdate, init_cloths)
-            .add_systems(FixedUpdate, step_cloths.in_set(WindfallSystems::Simulate))
-            .add_systems(PostUpdate, write_cloth_meshes);
+        let schedule = crate::simulation_schedule(app);
+        app.register_type::<Cloth>()
+            .register_type::<ClothState>()
+            .register_type::<ClothInvalid>()
+            .add_observer(init_on_insert)
+            // Set up in the frame the cloth is added (or changed), before its mesh is written.
+            .add_systems(
+                PostUpdate,
+                (init_cloths, write_cloth_meshes)
+                    .chain()
+                    .in_set(WindfallSystems::WriteBack),
+            )
+            .add_systems(schedule, step_cloths.in_set(WindfallSystems::Simulate));
     }
 }
 
@@ -77,40 +162,102 @@ pub fn wind_steps_per_frame(speed: f32, length: f32) -> f32 {
     super::sim::steps_for_speed(speed, length).clamp(0.0, 50.0)
 }
 
+/// A cloth, its mesh and what was made of it so far.
+type ClothParts<'a> = (
+    Entity,
+    &'a Cloth,
+    Option<&'a Mesh3d>,
+    Option<&'a ClothState>,
+    Option<&'a ClothInvalid>,
+);
+
+/// Sets up every cloth added or changed this frame (a change of grid, parameters or attachment
+/// rebuilds it; `follow_wind` alone does not).
 fn init_cloths(
     mut commands: Commands,
-    cloths: Query<(Entity, &Cloth, Option<&Mesh3d>), Changed<Cloth>>,
-    meshes: Option<ResMut<Assets<Mesh>>>,
+    cloths: Query<ClothParts, Changed<Cloth>>,
+    mut meshes: Option<ResMut<Assets<Mesh>>>,
 ) {
-    let mut meshes = meshes;
-    for (entity, cloth, mesh) in &cloths {
-        let mut e = commands.entity(entity);
-        match ClothSim::new(cloth.grid, cloth.params, cloth.attachment) {
-            Ok(sim) => {
-                if let Some(meshes) = meshes.as_deref_mut() {
-                    let (rows, columns) = (cloth.grid.rows, cloth.grid.columns);
-                    let fresh = cloth_mesh(rows, columns, sim.positions());
-                    let existing = mesh.filter(|m| meshes.contains(&m.0));
-                    match existing {
-                        Some(m) => {
-                            if let Some(mut slot) = meshes.get_mut(&m.0) {
-                                *slot = fresh;
-                            }
-                        }
-                        None => {
-                            e.insert(Mesh3d(meshes.add(fresh)));
+    for (entity, cloth, mesh, state, invalid) in &cloths {
+        // Refused already (at insertion) for the same reason: not again.
+        let refused = invalid.is_some_and(|i| {
+            cloth
+                .grid
+                .validate()
+                .and(cloth.params.validate())
+                .err()
+                .as_ref()
+                == Some(&i.0)
+        });
+        if !refused && state.is_none_or(|s| !built_for(s, cloth)) {
+            init_cloth(&mut commands, entity, cloth, mesh, meshes.as_deref_mut());
+        }
+    }
+}
+
+/// Sets a [`Cloth`] up the moment it is inserted: its [`ClothState`] and mesh exist in the
+/// frame it was spawned.
+fn init_on_insert(
+    event: On<Insert, Cloth>,
+    mut commands: Commands,
+    cloths: Query<(&Cloth, Option<&Mesh3d>, Option<&ClothState>)>,
+    mut meshes: Option<ResMut<Assets<Mesh>>>,
+) {
+    if let Ok((cloth, mesh, state)) = cloths.get(event.entity)
+        && state.is_none_or(|s| !built_for(s, cloth))
+    {
+        init_cloth(
+            &mut commands,
+            event.entity,
+            cloth,
+            mesh,
+            meshes.as_deref_mut(),
+        );
+    }
+}
+
+/// Whether `state` was built for `cloth`'s shape.
+fn built_for(state: &ClothState, cloth: &Cloth) -> bool {
+    let sim = &state.sim;
+    *sim.grid() == cloth.grid
+        && *sim.params() == cloth.params
+        && sim.attachment() == cloth.attachment
+}
+
+fn init_cloth(
+    commands: &mut Commands,
+    entity: Entity,
+    cloth: &Cloth,
+    mesh: Option<&Mesh3d>,
+    meshes: Option<&mut Assets<Mesh>>,
+) {
+    let mut e = commands.entity(entity);
+    match ClothSim::new(cloth.grid, cloth.params, cloth.attachment) {
+        Ok(sim) => {
+            if let Some(meshes) = meshes {
+                let (rows, columns) = (cloth.grid.rows, cloth.grid.columns);
+                let fresh = cloth_mesh(rows, columns, sim.positions());
+                let existing = mesh.filter(|m| meshes.contains(&m.0));
+                match existing {
+                    Some(m) => {
+                        if let Some(mut slot) = meshes.get_mut(&m.0) {
+                            *slot = fresh;
                         }
                     }
+                    None => {
+                        e.insert(Mesh3d(meshes.add(fresh)));
+                    }
                 }
-                e.remove::<ClothInvalid>().insert(ClothState {
-                    wind_speed: cloth.params.wind_speed,
-                    sim,
-                    yaw: 0.0,
-                });
             }
-            Err(error) => {
-                e.remove::<ClothState>().insert(ClothInvalid(error));
-            }
+            e.remove::<ClothInvalid>().insert(ClothState {
+                wind_speed: cloth.params.wind_speed,
+                sim,
+                yaw: 0.0,
+            });
+        }
+        Err(error) => {
+            bevy::log::warn!("Cloth {entity}: {error}; it is not shown");
+            e.remove::<ClothState>().insert(ClothInvalid(error));
         }
     }
 }
@@ -119,7 +266,7 @@ fn init_cloths(
 const TURN_TIME: f32 = 0.6;
 
 fn step_cloths(
-    time: Res<Time<Fixed>>,
+    time: Res<Time>,
     wind: Option<Res<WindField>>,
     mut cloths: Query<(&Cloth, &mut ClothState, &GlobalTransform)>,
 ) {
@@ -144,16 +291,21 @@ fn step_cloths(
     }
 }
 
+/// Rebuilds each cloth between its last two fixed steps (by how far the frame is into the next
+/// step) and rewrites its mesh in place.
 fn write_cloth_meshes(
     mut cloths: Query<(&Cloth, &mut ClothState, &Mesh3d)>,
     mut meshes: Option<ResMut<Assets<Mesh>>>,
+    schedule: Option<Res<crate::WindfallSchedule>>,
+    time: Option<Res<Time<Fixed>>>,
     mut rotated: Local<Vec<Vec3>>,
 ) {
     let Some(meshes) = meshes.as_deref_mut() else {
         return;
     };
+    let s = crate::overstep(schedule.as_deref(), time.as_deref());
     for (cloth, mut state, mesh) in &mut cloths {
-        state.sim.rebuild();
+        state.sim.rebuild_at(s);
         let Some(mut mesh) = meshes.get_mut(&mesh.0) else {
             continue;
         };

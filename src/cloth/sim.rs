@@ -88,6 +88,8 @@ pub struct ClothSim {
     along: f64,
     across: f64,
     time: f64,
+    /// What the last step added to `along`, `across` and `time`.
+    last_step: [f64; 3],
     /// |v| of the last step.
     speed: f32,
     positions: Vec<Vec3>,
@@ -98,6 +100,18 @@ pub struct ClothSim {
     /// wind's gain).
     keep: Vec<f32>,
     taps: Vec<ColumnTap>,
+}
+
+impl Default for ClothSim {
+    /// The default cloth: a flag on a pole, Table 1's gentle frozen row.
+    fn default() -> Self {
+        Self::new(
+            ClothGrid::default(),
+            ClothParams::default(),
+            ClothAttachment::Pole,
+        )
+        .expect("the default cloth is valid")
+    }
 }
 
 impl ClothSim {
@@ -149,6 +163,7 @@ impl ClothSim {
             along: 0.0,
             across: 0.0,
             time: 0.0,
+            last_step: [0.0; 3],
             speed: params.wind_speed,
             positions: vec![Vec3::ZERO; grid.rows * grid.columns],
             directions: vec![Vec2::X; segments],
@@ -168,6 +183,11 @@ impl ClothSim {
     /// The parameters.
     pub fn params(&self) -> &ClothParams {
         &self.params
+    }
+
+    /// Pole or rod.
+    pub fn attachment(&self) -> ClothAttachment {
+        self.attachment
     }
 
     /// Node positions in the local frame, row-major (yarn by yarn, pole to free edge).
@@ -199,6 +219,7 @@ impl ClothSim {
             self.along = (self.along + steps).rem_euclid(columns as f64);
             self.across = (self.across + swirl).rem_euclid(rows as f64);
             self.time = (self.time + dt).rem_euclid(frames as f64 / f64::from(PAPER_FPS));
+            self.last_step = [steps, swirl, dt];
             self.speed = wind_speed;
         }
     }
@@ -216,6 +237,28 @@ impl ClothSim {
     ///   3 m/s;
     /// - a curtain leans downwind (+Z) by atan(0.028 U²): 35° at 5 m/s.
     pub fn rebuild(&mut self) {
+        self.rebuild_with(self.along, self.across, self.time);
+    }
+
+    /// [`ClothSim::rebuild`] a fraction `s` ∈ [0, 1] of the way from the step before the last
+    /// one to the last: the shape between fixed steps, so a cloth drawn every frame moves
+    /// smoothly at any frame rate (1 is [`ClothSim::rebuild`]).
+    pub fn rebuild_at(&mut self, s: f32) {
+        let back = 1.0
+            - f64::from(if s.is_finite() {
+                s.clamp(0.0, 1.0)
+            } else {
+                1.0
+            });
+        let [along, across, time] = self.last_step;
+        self.rebuild_with(
+            self.along - back * along,
+            self.across - back * across,
+            self.time - back * time,
+        );
+    }
+
+    fn rebuild_with(&mut self, along: f64, across: f64, time: f64) {
         let (rows, columns) = (self.grid.rows, self.grid.columns);
         let segments = columns - 1;
         let segment = self.grid.segment();
@@ -223,7 +266,7 @@ impl ClothSim {
         let strength = Strength::new(self.air_speed(), self.params.reference_speed);
         let frame = match self.params.model {
             ClothWindModel::Frozen => 0.0,
-            ClothWindModel::NonFrozen { .. } => self.time * f64::from(PAPER_FPS),
+            ClothWindModel::NonFrozen { .. } => time * f64::from(PAPER_FPS),
         };
         let step = CELLS_PER_YARN as f64 / segments as f64;
         let hold = (0.3 * segments as f32).max(1.0);
@@ -240,17 +283,13 @@ impl ClothSim {
         let twist = f64::from(self.params.twist);
         if twist == 0.0 {
             self.sheet
-                .column_taps(-self.along, step, segments, &mut self.taps);
+                .column_taps(-along, step, segments, &mut self.taps);
         }
         for k in 0..rows {
-            let row = k as f64 + self.across;
+            let row = k as f64 + across;
             if twist != 0.0 {
-                self.sheet.column_taps(
-                    twist * k as f64 - self.along,
-                    step,
-                    segments,
-                    &mut self.taps,
-                );
+                self.sheet
+                    .column_taps(twist * k as f64 - along, step, segments, &mut self.taps);
             }
             self.sheet
                 .blend_line(frame, row, &self.taps, &mut self.directions);

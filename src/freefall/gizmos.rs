@@ -7,32 +7,54 @@ use std::collections::VecDeque;
 use bevy::app::{App, Plugin, PostUpdate};
 use bevy::color::Color;
 use bevy::ecs::prelude::*;
+use bevy::gizmos::AppGizmoBuilder;
+use bevy::gizmos::config::{GizmoConfig, GizmoConfigGroup};
 use bevy::gizmos::gizmos::Gizmos;
 use bevy::math::Vec3;
+use bevy::reflect::Reflect;
 use bevy::transform::TransformSystems;
 use bevy::transform::components::GlobalTransform;
 
 use super::{FallState, FallingObject, PrimitiveMotion};
 
-/// Draws falling objects' trails while [`FallGizmos::enabled`]. Costs nothing while disabled.
+/// Draws falling objects' trails when the [`FallGizmos`] gizmo group is enabled (off by
+/// default; part of [`WindfallDebugPlugin`](crate::WindfallDebugPlugin)). Costs nothing while
+/// disabled.
 pub struct FallGizmosPlugin;
 
 impl Plugin for FallGizmosPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<FallGizmos>().add_systems(
-            PostUpdate,
-            draw_fall_paths
-                .after(TransformSystems::Propagate)
-                .run_if(|g: Res<FallGizmos>| g.enabled),
-        );
+        let config = GizmoConfig {
+            enabled: false,
+            ..Default::default()
+        };
+        app.insert_gizmo_config(FallGizmos::default(), config)
+            .add_systems(
+                PostUpdate,
+                draw_fall_paths.after(TransformSystems::Propagate).run_if(
+                    |store: Res<bevy::gizmos::config::GizmoConfigStore>| {
+                        store.config::<FallGizmos>().0.enabled
+                    },
+                ),
+            );
     }
 }
 
-/// How [`FallGizmosPlugin`] draws.
-#[derive(Resource, Clone, Debug)]
+/// The gizmo group of the fall trails: how long and how many.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::freefall::FallGizmos;
+///
+/// fn show_trails(mut store: ResMut<GizmoConfigStore>) {
+///     store.config_mut::<FallGizmos>().0.enabled = true;
+/// }
+/// # let _ = show_trails;
+/// ```
+#[derive(Clone, Debug, Reflect, GizmoConfigGroup)]
 pub struct FallGizmos {
-    /// Draw at all (off by default).
-    pub enabled: bool,
     /// Frames of path kept per object.
     pub trail_frames: usize,
     /// Draw at most this many objects' trails (the first ones found).
@@ -42,7 +64,6 @@ pub struct FallGizmos {
 impl Default for FallGizmos {
     fn default() -> Self {
         Self {
-            enabled: false,
             trail_frames: 90,
             max_objects: 60,
         }
@@ -72,13 +93,13 @@ pub fn motion_color(motion: PrimitiveMotion) -> Color {
 
 fn draw_fall_paths(
     mut commands: Commands,
-    config: Res<FallGizmos>,
     mut objects: Query<
         (Entity, &FallState, &GlobalTransform, Option<&mut FallTrail>),
         With<FallingObject>,
     >,
-    mut gizmos: Gizmos,
+    mut gizmos: Gizmos<FallGizmos>,
 ) {
+    let config = gizmos.config_ext.clone();
     for (entity, state, transform, trail) in objects.iter_mut().take(config.max_objects) {
         let Some(mut trail) = trail else {
             commands.entity(entity).insert(FallTrail::default());

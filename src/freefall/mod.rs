@@ -46,12 +46,11 @@ pub use database::{
 pub use gizmos::{FallGizmos, FallGizmosPlugin, FallTrail, motion_color};
 pub use markov::{BoundedChain, CHAIN_STEP, MarkovChain, MarkovError, motion_class_count};
 pub use model::FallModel;
-pub use motion::{
-    CHAOTIC_MIN_TIME, CHAOTIC_SCALE, FallScales, Glide, MIN_PIECE, Piece, STROUHAL, SwingChoice,
-    next_glide,
-};
+pub use motion::{CHAOTIC_MIN_TIME, FallScales, Glide, Piece, STROUHAL, SwingChoice};
 pub use path::{FallPath, FallRelease, StepOutcome, WindTilt};
-pub use plugin::{FallState, FallingObject, FreeFallPlugin, FreeFallSettings, Landed};
+pub use plugin::{
+    FallState, FallingObject, FallingObjectInvalid, FreeFallPlugin, FreeFallSettings, Landed,
+};
 pub use presets::FallPreset;
 pub use random::FallRng;
 pub use regime::{

@@ -1,5 +1,7 @@
 //! What every fall shares: the trajectory database and the Markov chain.
 
+use bevy::ecs::reflect::ReflectResource;
+use bevy::reflect::Reflect;
 use std::sync::Arc;
 
 use bevy::ecs::resource::Resource;
@@ -11,7 +13,24 @@ use super::regime::PrimitiveMotion;
 /// The trajectory database and the Markov chain, bounded once per main motion (eq. 9) so that a
 /// [`FallPath`](super::FallPath) only carries its main motion. A resource of the
 /// [`FreeFallPlugin`](super::FreeFallPlugin); replace it to use another database or chain.
-#[derive(Resource, Clone, Debug)]
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::freefall::{FallModel, MarkovChain};
+/// use bevy_windfall::prelude::*;
+///
+/// // Start in any motion; stay 3 s in each on average; then move on to the next one.
+/// let next = std::array::from_fn(|i| std::array::from_fn(|j| if j == i + 1 { 1.0 } else { 0.0 }));
+/// let dwell = [3.0, 3.0, 3.0, 3.0, 3.0, f32::INFINITY];
+/// let calm = MarkovChain::from_dwell_times([1.0; 6], dwell, next).unwrap();
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, WindfallPlugins));
+/// app.world_mut().resource_mut::<FallModel>().set_chain(calm);
+/// ```
+#[derive(Resource, Clone, Debug, Reflect)]
+#[reflect(opaque, Resource, Debug)]
 pub struct FallModel {
     database: TrajectoryDatabase,
     chain: MarkovChain,

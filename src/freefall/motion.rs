@@ -546,6 +546,35 @@ pub(crate) fn sin_cos_small(x: f32) -> (f32, f32) {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn chaotic_swings_vary_within_the_r_range() {
+        let mut rng = FallRng::new(9);
+        let mut glide = Glide::Right;
+        let (mut same, mut lo, mut hi) = (0, f32::INFINITY, 0.0f32);
+        let n = 20_000;
+        for _ in 0..n {
+            let (g, r) = next_glide(PrimitiveMotion::Chaotic, glide, &mut rng);
+            same += usize::from(g == glide);
+            lo = lo.min(r);
+            hi = hi.max(r);
+            glide = g;
+        }
+        assert!((same as f32 / n as f32 - 0.5).abs() < 0.02);
+        assert!(
+            lo >= 0.1 && hi <= 10.0 && lo < 0.2 && hi > 5.0,
+            "r in [{lo}, {hi}]"
+        );
+        // Fluttering alternates, tumbling keeps its side.
+        assert_eq!(
+            next_glide(PrimitiveMotion::Fluttering, Glide::Left, &mut rng),
+            (Glide::Right, 1.0)
+        );
+        assert_eq!(
+            next_glide(PrimitiveMotion::Tumbling, Glide::Left, &mut rng),
+            (Glide::Left, 1.0)
+        );
+    }
+
     use super::*;
 
     #[test]

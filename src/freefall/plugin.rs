@@ -3,12 +3,12 @@
 
 use std::sync::{Arc, Mutex, PoisonError};
 
-use bevy::app::{App, FixedUpdate, Plugin, PostUpdate};
+use bevy::app::{App, Plugin, PostUpdate};
 use bevy::ecs::prelude::*;
 use bevy::math::{Quat, Vec3};
 use bevy::reflect::Reflect;
+use bevy::reflect::std_traits::ReflectDefault;
 use bevy::time::{Fixed, Time};
-use bevy::transform::TransformSystems;
 use bevy::transform::components::Transform;
 
 use super::markov::MarkovChain;
@@ -25,10 +25,38 @@ use crate::wind::WindField;
 /// (released in the frame's `PostUpdate`, moved from the next fixed step on). The plate lies in
 /// the entity's local XZ plane with its long axis along local Z (the axis it tumbles about).
 /// Change it (for example `seed += 1`) to release it again from its current transform; a fall
-/// released in mid-air keeps its velocity. An invalid description leaves a [`FallState`] with
-/// [`FallState::error`] set and the entity still. [`FallPreset`](super::FallPreset) has real
+/// released in mid-air keeps its velocity. An invalid description gets a
+/// [`FallingObjectInvalid`] holding the typed error (logged once with `warn!`) and the entity
+/// stays still. [`FallPreset`](super::FallPreset) has real
 /// objects.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// // A sheet of paper let go 2 m up, turned 30° about its long axis.
+/// let sheet = app
+///     .world_mut()
+///     .spawn((
+///         FallingObject {
+///             shape: Shape::Rectangle { length: 0.297, width: 0.21, thickness: 1e-4 },
+///             density: 800.0,
+///             seed: 3,
+///             ..default()
+///         },
+///         Transform::from_xyz(0.0, 2.0, 0.0).with_rotation(Quat::from_rotation_z(0.5)),
+///     ))
+///     .id();
+/// app.update();
+/// let regime = *app.world().get::<FallState>(sheet).unwrap().regime().unwrap();
+/// assert_eq!(regime.main, PrimitiveMotion::Tumbling);
+/// ```
 #[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Default, Debug)]
 #[require(Transform, FallState)]
 pub struct FallingObject {
     /// Outline and sizes.
@@ -128,12 +156,34 @@ impl FallingObject {
     }
 }
 
-/// Runtime state of a [`FallingObject`] (required component).
-#[derive(Component, Clone, Debug, Default)]
+/// Runtime state of a [`FallingObject`] (required component). Reflected (Re, I*, U, the main
+/// motion) for inspectors; the path itself is not.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// // Count what the falling objects are doing.
+/// fn census(objects: Query<&FallState>) -> [usize; 6] {
+///     let mut counts = [0; 6];
+///     for motion in objects.iter().filter_map(FallState::motion) {
+///         counts[motion.index()] += 1;
+///     }
+///     counts
+/// }
+/// # let _ = census;
+/// ```
+#[derive(Component, Clone, Debug, Default, Reflect)]
+#[reflect(Component, Default, Debug)]
 pub struct FallState {
     regime: Option<Regime>,
+    #[reflect(ignore)]
     path: Option<FallPath>,
-    error: Option<FreeFallError>,
+    /// The component this fall was released for (a change of it releases again).
+    #[reflect(ignore)]
+    released_for: Option<FallingObject>,
 }
 
 impl FallState {
@@ -147,11 +197,6 @@ impl FallState {
         self.path.as_ref()
     }
 
-    /// Why the object does not fall, if it is invalid.
-    pub fn error(&self) -> Option<&FreeFallError> {
-        self.error.as_ref()
-    }
-
     /// The current primitive motion.
     pub fn motion(&self) -> Option<PrimitiveMotion> {
         self.path.as_ref().map(FallPath::motion)
@@ -163,7 +208,51 @@ impl FallState {
     }
 }
 
+/// Why a [`FallingObject`] does not fall: its description is invalid (the error names the
+/// field). Inserted in place of a fall, removed once the component is fixed; the crate's one
+/// convention for runtime failures, as [`ClothInvalid`](crate::cloth::ClothInvalid) and
+/// [`PhysicalClothInvalid`](crate::aero::PhysicalClothInvalid).
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// use bevy_windfall::freefall::FallingObjectInvalid;
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// // Lighter than air: it cannot fall.
+/// let balloon = app
+///     .world_mut()
+///     .spawn(FallingObject { density: 0.5, ..default() })
+///     .id();
+/// app.update();
+/// let invalid = app.world().get::<FallingObjectInvalid>(balloon).unwrap();
+/// assert_eq!(invalid.0.field(), "density");
+/// ```
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Debug)]
+pub struct FallingObjectInvalid(pub FreeFallError);
+
 /// Sent when a [`FallingObject`] reaches the ground.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// fn rustle(mut landed: MessageReader<Landed>) {
+///     for l in landed.read() {
+///         info!("{} landed at {} after {:.1} s", l.entity, l.position, l.flight_time);
+///     }
+/// }
+/// App::new()
+///     .add_plugins((MinimalPlugins, WindfallPlugins))
+///     .add_systems(Update, rustle);
+/// ```
 #[derive(Message, Clone, Copy, Debug, PartialEq)]
 pub struct Landed {
     /// The object.
@@ -175,7 +264,20 @@ pub struct Landed {
 }
 
 /// Shared settings of every fall.
-#[derive(Resource, Clone, Debug, PartialEq, Default)]
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// // A table top 0.75 m up.
+/// App::new()
+///     .add_plugins((MinimalPlugins, WindfallPlugins))
+///     .insert_resource(FreeFallSettings { ground_height: 0.75 });
+/// ```
+#[derive(Resource, Clone, Debug, PartialEq, Default, Reflect)]
+#[reflect(Resource, Default, Debug)]
 pub struct FreeFallSettings {
     /// Height of the ground, m: objects stop there.
     pub ground_height: f32,
@@ -188,54 +290,122 @@ pub struct FreeFallPlugin;
 impl Plugin for FreeFallPlugin {
     fn build(&self, app: &mut App) {
         crate::configure_sets(app);
+        let schedule = crate::simulation_schedule(app);
         if !app.world().contains_resource::<FallModel>() {
             app.insert_resource(FallModel::default());
         }
-        app.init_resource::<FreeFallSettings>()
+        app.register_type::<FallingObject>()
+            .register_type::<FallState>()
+            .register_type::<FallingObjectInvalid>()
+            .register_type::<FreeFallSettings>()
+            .register_type::<FallModel>()
+            .register_type::<super::FallPreset>()
+            .init_resource::<FreeFallSettings>()
             .add_message::<Landed>()
-            .add_systems(FixedUpdate, step_objects.in_set(WindfallSystems::Simulate))
-            // Releasing here (not in FixedUpdate) reads the transform the user set this frame
-            // before `pose_objects` would overwrite it.
+            .add_observer(release_on_insert)
+            .add_systems(schedule, step_objects.in_set(WindfallSystems::Simulate))
+            // Releasing here (not in the simulation) reads the transform the user set this
+            // frame before `pose_objects` would overwrite it.
             .add_systems(
                 PostUpdate,
                 (release_objects, pose_objects)
                     .chain()
-                    .before(TransformSystems::Propagate),
+                    .in_set(WindfallSystems::WriteBack),
             );
     }
 }
 
 fn release_objects(
-    mut objects: Query<(&FallingObject, &Transform, &mut FallState), Changed<FallingObject>>,
+    mut commands: Commands,
+    mut objects: Query<
+        (Entity, &FallingObject, &Transform, &mut FallState),
+        Changed<FallingObject>,
+    >,
     settings: Res<FreeFallSettings>,
     model: Res<FallModel>,
 ) {
-    for (object, transform, mut state) in &mut objects {
-        // A fall released again in mid-air keeps the velocity the fluid gave it.
-        let velocity = state
-            .path
-            .as_ref()
-            .filter(|p| !p.landed())
-            .map_or(Vec3::ZERO, FallPath::drift);
-        let release = FallRelease {
-            position: transform.translation,
-            rotation: Some(transform.rotation),
-            velocity,
-            ground: settings.ground_height,
-        };
-        *state = match object.regime() {
-            Ok(regime) => FallState {
+    for (entity, object, transform, mut state) in &mut objects {
+        if state.released_for.as_ref() != Some(object) {
+            release(
+                &mut commands,
+                entity,
+                object,
+                transform,
+                &mut state,
+                &settings,
+                &model,
+            );
+        }
+    }
+}
+
+/// Sets a [`FallingObject`] up the moment it is inserted, so it is falling (and its
+/// [`FallState`] filled in) in the frame it was spawned.
+fn release_on_insert(
+    event: On<Insert, FallingObject>,
+    mut commands: Commands,
+    mut objects: Query<(&FallingObject, &Transform, &mut FallState)>,
+    settings: Option<Res<FreeFallSettings>>,
+    model: Option<Res<FallModel>>,
+) {
+    let (Some(settings), Some(model)) = (settings, model) else {
+        return;
+    };
+    if let Ok((object, transform, mut state)) = objects.get_mut(event.entity) {
+        release(
+            &mut commands,
+            event.entity,
+            object,
+            transform,
+            &mut state,
+            &settings,
+            &model,
+        );
+    }
+}
+
+/// Lets `object` go from `transform`; a fall released again in mid-air keeps the velocity the
+/// fluid gave it. An invalid object gets a [`FallingObjectInvalid`] (logged once) and stays
+/// where it is.
+fn release(
+    commands: &mut Commands,
+    entity: Entity,
+    object: &FallingObject,
+    transform: &Transform,
+    state: &mut FallState,
+    settings: &FreeFallSettings,
+    model: &FallModel,
+) {
+    let velocity = state
+        .path
+        .as_ref()
+        .filter(|p| !p.landed())
+        .map_or(Vec3::ZERO, FallPath::drift);
+    let release = FallRelease {
+        position: transform.translation,
+        rotation: Some(transform.rotation),
+        velocity,
+        ground: settings.ground_height,
+    };
+    *state = match object.regime() {
+        Ok(regime) => {
+            commands.entity(entity).remove::<FallingObjectInvalid>();
+            FallState {
                 regime: Some(regime),
-                path: object.path(&model, release).ok(),
-                error: None,
-            },
-            Err(error) => FallState {
+                path: object.path(model, release).ok(),
+                released_for: Some(object.clone()),
+            }
+        }
+        Err(error) => {
+            bevy::log::warn!("FallingObject {entity}: {error}; it does not fall");
+            commands.entity(entity).insert(FallingObjectInvalid(error));
+            FallState {
                 regime: None,
                 path: None,
-                error: Some(error),
-            },
-        };
-    }
+                released_for: Some(object.clone()),
+            }
+        }
+    };
 }
 
 /// Steps every fall; objects are independent, so they run in parallel (with Bevy's
@@ -245,7 +415,7 @@ fn step_objects(
     mut objects: Query<(Entity, &FallingObject, &mut FallState)>,
     wind: Option<Res<WindField>>,
     model: Res<FallModel>,
-    time: Res<Time<Fixed>>,
+    time: Res<Time>,
     mut landed: MessageWriter<Landed>,
 ) {
     let dt = time.delta_secs();
@@ -285,8 +455,12 @@ fn step_objects(
     landed.write_batch(landings);
 }
 
-fn pose_objects(mut objects: Query<(&FallState, &mut Transform)>, time: Option<Res<Time<Fixed>>>) {
-    let s = time.map_or(1.0, |t| t.overstep_fraction());
+fn pose_objects(
+    mut objects: Query<(&FallState, &mut Transform)>,
+    schedule: Option<Res<crate::WindfallSchedule>>,
+    time: Option<Res<Time<Fixed>>>,
+) {
+    let s = crate::overstep(schedule.as_deref(), time.as_deref());
     objects.par_iter_mut().for_each(|(state, mut transform)| {
         if let Some(path) = state.path() {
             let (position, rotation): (Vec3, Quat) = path.smoothed(s);

@@ -1,6 +1,6 @@
 //! A small portable random stream per falling object.
 
-use rand::{RngCore, SeedableRng};
+use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg32;
 
 /// PCG32 with uniform and normal draws made from integer bits and `libm`, so a seed gives the

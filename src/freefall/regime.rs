@@ -218,7 +218,7 @@ impl Shape {
 }
 
 /// Why an object cannot fall by the paper's model.
-#[derive(Clone, Copy, Debug, PartialEq, Error)]
+#[derive(Clone, Copy, Debug, PartialEq, Error, Reflect)]
 pub enum FreeFallError {
     /// A number outside its valid range.
     #[error("`{field}` = {value}: {reason}")]
@@ -261,7 +261,7 @@ pub const MIN_SIZE: f32 = 1.0e-7;
 pub const MAX_DENSITY_RATIO: f32 = 1.0e6;
 
 /// Everything §2.1 derives from the inputs. Computed in f64, stored in f32.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct Regime {
     /// Re = U L / ν (eq. 1).
     pub reynolds: f32,

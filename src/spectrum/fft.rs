@@ -8,6 +8,7 @@ use super::grid::GridShape;
 
 /// Which rustfft planner transforms the spectrum.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum FftBackend {
     /// rustfft's scalar algorithms: the same bits on every machine. The default.
     #[default]

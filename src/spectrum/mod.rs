@@ -32,5 +32,6 @@ mod synth;
 
 pub use fft::FftBackend;
 pub use grid::GridShape;
-pub use sample::{periodic_lerp, periodic_lerp_2d};
+pub(crate) use sample::periodic_lerp;
+pub use sample::periodic_lerp_2d;
 pub use synth::{SpectrumError, Synthesizer, fbm, fbm_pair, try_fbm, try_fbm_pair};

@@ -1,6 +1,6 @@
 //! Portable standard normal numbers.
 
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 use rustfft::num_complex::Complex;
 

@@ -8,6 +8,7 @@ use thiserror::Error;
 
 /// Where the turbulence lives in space.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SpatialMode {
     /// One horizontal 2-D field at the reference height, carried to other heights by the log-law
     /// ratio of eq. 14 (free-fall paper). Cheap: the paper's choice for real time.
@@ -21,6 +22,7 @@ pub enum SpatialMode {
 
 /// How the turbulence changes in time.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum TemporalMode {
     /// Taylor's frozen turbulence: the pattern only translates with the mean wind.
     Frozen,
@@ -51,6 +53,7 @@ pub enum TemporalMode {
 /// | `seed` | – | 0 | seed of the turbulence |
 /// | `fft` | – | `Portable` | [`FftBackend`]: same bits on every machine, or SIMD speed |
 #[derive(Clone, Debug, PartialEq, Reflect)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WindConfig {
     /// Mean wind speed at `reference_height`, m/s.
     pub reference_speed: f32,

@@ -1,7 +1,9 @@
 //! The [`WindField`] resource: mean log-law wind plus spectral turbulence, sampled anywhere.
 
+use bevy::ecs::reflect::ReflectResource;
 use bevy::ecs::resource::Resource;
 use bevy::math::{Vec2, Vec3};
+use bevy::reflect::Reflect;
 
 use super::config::{SpatialMode, TemporalMode, WindConfig, WindError};
 use super::profile;
@@ -24,7 +26,29 @@ pub const MAX_TURBULENCE_INTENSITY: f32 = 10.0;
 /// Axes: Y is up; `u` is along the mean wind direction, `v` along `direction × Y`, `w` along Y.
 ///
 /// [`WindPlugin`]: super::WindPlugin
-#[derive(Resource, Clone, Debug)]
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// // A system that pushes smoke particles with the wind where they are.
+/// #[derive(Component)]
+/// struct Smoke;
+///
+/// fn drift(wind: Res<WindField>, time: Res<Time>, mut smoke: Query<&mut Transform, With<Smoke>>) {
+///     for mut t in &mut smoke {
+///         let v = wind.velocity(t.translation);
+///         t.translation += v * time.delta_secs();
+///     }
+/// }
+/// App::new()
+///     .add_plugins((MinimalPlugins, WindfallPlugins))
+///     .add_systems(FixedUpdate, drift.in_set(WindfallSystems::Simulate));
+/// ```
+#[derive(Resource, Clone, Debug, Reflect)]
+#[reflect(opaque, Resource, Debug)]
 pub struct WindField {
     config: WindConfig,
     shape: GridShape,
@@ -43,7 +67,13 @@ pub struct WindField {
     pub time_scale: f32,
     /// When true the clock does not advance.
     pub paused: bool,
+    /// Which field this is: every field made by [`WindField::new`] gets its own number (a clone
+    /// keeps it).
+    generation: u64,
 }
+
+/// Numbers the fields made by [`WindField::new`].
+static GENERATIONS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
 
 impl WindField {
     /// Builds the field: validates `config`, then synthesises the three turbulence components
@@ -84,6 +114,7 @@ impl WindField {
             time: 0.0,
             time_scale: 1.0,
             paused: false,
+            generation: GENERATIONS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
         };
         field.derive();
         Ok(field)
@@ -103,6 +134,11 @@ impl WindField {
         let d = c.direction.normalize();
         self.along = Vec3::new(d.x, 0.0, d.y);
         self.across = self.along.cross(Vec3::Y);
+    }
+
+    /// Which field this is (each [`WindField::new`] makes a new one; clones share it).
+    pub fn generation(&self) -> u64 {
+        self.generation
     }
 
     /// The configuration the field was built from (with any later speed or direction change).
@@ -157,6 +193,18 @@ impl WindField {
     /// Wind time, s.
     pub fn time(&self) -> f32 {
         self.time as f32
+    }
+
+    /// Wind time, s, in full (the clock runs in f64 so that long sessions keep their precision).
+    pub fn time_seconds(&self) -> f64 {
+        self.time
+    }
+
+    /// Sets the wind clock to `time` seconds (a non-finite time is ignored).
+    pub fn set_clock(&mut self, time: f64) {
+        if time.is_finite() {
+            self.time = time;
+        }
     }
 
     /// Advances the wind clock by `dt` seconds times [`Self::time_scale`], unless paused.

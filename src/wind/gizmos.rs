@@ -3,29 +3,55 @@
 use bevy::app::{App, Plugin, Update};
 use bevy::color::{Color, LinearRgba};
 use bevy::ecs::prelude::*;
+use bevy::gizmos::AppGizmoBuilder;
+use bevy::gizmos::config::{GizmoConfig, GizmoConfigGroup};
 use bevy::gizmos::gizmos::Gizmos;
 use bevy::math::{Vec2, Vec3};
+use bevy::reflect::Reflect;
 
 use super::WindField;
 
-/// Draws a grid of wind arrows every frame while a [`WindField`] exists. Configure with the
-/// [`WindGizmos`] resource.
+/// Draws a grid of wind arrows every frame while a [`WindField`] exists, when the
+/// [`WindGizmos`] gizmo group is enabled (off by default; part of
+/// [`WindfallDebugPlugin`](crate::WindfallDebugPlugin)).
 pub struct WindGizmosPlugin;
 
 impl Plugin for WindGizmosPlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<WindGizmos>().add_systems(
-            Update,
-            draw_wind_arrows.run_if(resource_exists::<WindField>),
-        );
+        let config = GizmoConfig {
+            enabled: false,
+            ..Default::default()
+        };
+        app.insert_gizmo_config(WindGizmos::default(), config)
+            .add_systems(
+                Update,
+                draw_wind_arrows.run_if(resource_exists::<WindField>),
+            );
     }
 }
 
-/// Where and how [`WindGizmosPlugin`] draws its arrows.
-#[derive(Resource, Clone, Debug)]
+/// The gizmo group of the wind arrows: where and how they are drawn. Switch it on with
+/// `GizmoConfigStore::config_mut::<WindGizmos>().0.enabled = true`.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+/// use bevy_windfall::wind::WindGizmos;
+///
+/// // Arrows every 2 m over a 20 × 20 m yard, switched on with F1.
+/// fn toggle(keys: Res<ButtonInput<KeyCode>>, mut store: ResMut<GizmoConfigStore>) {
+///     if keys.just_pressed(KeyCode::F1) {
+///         let (config, arrows) = store.config_mut::<WindGizmos>();
+///         config.enabled = !config.enabled;
+///         arrows.half_extent = Vec2::splat(10.0);
+///     }
+/// }
+/// # let _ = toggle;
+/// ```
+#[derive(Clone, Debug, Reflect, GizmoConfigGroup)]
 pub struct WindGizmos {
-    /// Draw at all.
-    pub enabled: bool,
     /// Centre of the grid of arrows (x, z), m.
     pub center: Vec2,
     /// Half the sides of the grid along x and z, m.
@@ -41,7 +67,6 @@ pub struct WindGizmos {
 impl Default for WindGizmos {
     fn default() -> Self {
         Self {
-            enabled: true,
             center: Vec2::ZERO,
             half_extent: Vec2::splat(20.0),
             spacing: 2.0,
@@ -67,10 +92,12 @@ pub fn speed_class_color(speed: f32, mean: f32) -> Color {
     rgb.into()
 }
 
-fn draw_wind_arrows(config: Res<WindGizmos>, wind: Res<WindField>, mut gizmos: Gizmos) {
-    if !config.enabled || config.spacing <= 0.0 {
+fn draw_wind_arrows(wind: Res<WindField>, mut gizmos: Gizmos<WindGizmos>) {
+    let spacing = gizmos.config_ext.spacing;
+    if !gizmos.config.enabled || spacing.is_nan() || spacing <= 0.0 {
         return;
     }
+    let config = gizmos.config_ext.clone();
     let steps = (config.half_extent / config.spacing).floor().as_ivec2();
     let mean = wind.mean_speed_at(config.height);
     for i in -steps.x..=steps.x {

@@ -20,10 +20,15 @@ mod gizmos;
 mod plugin;
 pub mod profile;
 mod rebuild;
+mod settings;
+mod snapshot;
 
 pub use config::{MAX_NODES, SpatialMode, TemporalMode, WindConfig, WindError};
 pub use field::{MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, WindField};
 #[cfg(feature = "gizmos")]
 pub use gizmos::{WindGizmos, WindGizmosPlugin, speed_class_color};
-pub use plugin::{WindPlugin, advance_wind_clock};
-pub use rebuild::{WindRebuild, WindRebuilt, finish_wind_rebuild};
+pub use plugin::WindPlugin;
+pub use rebuild::{REBUILD_STEPS, WindRebuild, WindRebuilt};
+pub use settings::WindSettings;
+pub(crate) use settings::apply_wind_settings;
+pub use snapshot::WindSnapshot;

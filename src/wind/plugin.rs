@@ -1,19 +1,23 @@
 //! ECS glue: the [`WindPlugin`] and the system that advances the wind clock.
 
-use bevy::app::{App, FixedUpdate, Plugin, PreUpdate};
+use bevy::app::{App, Plugin, RunFixedMainLoop};
 use bevy::ecs::prelude::*;
-use bevy::time::{Fixed, Time};
+use bevy::log::error;
+use bevy::time::Time;
 
-use super::{WindConfig, WindField, WindRebuilt, finish_wind_rebuild};
+use super::rebuild::land_wind_rebuild;
+use super::{WindConfig, WindField, WindRebuilt, WindSettings, apply_wind_settings};
 use crate::WindfallSystems;
 
 /// Adds wind to an app: inserts a [`WindField`] built from `config` (unless the app already has
-/// one) and advances its clock in [`FixedUpdate`], in [`WindfallSystems::Wind`]. Swaps in a
-/// field rebuilt in the background ([`WindRebuild`](super::WindRebuild)) in [`PreUpdate`].
+/// one) and its live [`WindSettings`]; takes in the settings before the fixed loop
+/// ([`WindfallSystems::Prepare`]); in the simulation schedule (`FixedUpdate`), in
+/// [`WindfallSystems::Wind`], lands a field rebuilt in the background
+/// ([`WindRebuild`](super::WindRebuild)) at its step and advances the wind clock.
 ///
 /// With `config: None` no field is inserted; insert your own with
-/// `app.insert_resource(WindField::new(config)?)`, which reports a bad configuration as a
-/// [`WindError`](super::WindError) instead of panicking.
+/// `app.insert_resource(WindField::new(config)?)`. An invalid `config` is logged as an error
+/// naming the field and no field is inserted (the app goes on in still air).
 #[derive(Clone, Debug)]
 pub struct WindPlugin {
     /// Configuration of the field to insert, if any.
@@ -38,31 +42,51 @@ impl WindPlugin {
 }
 
 impl Plugin for WindPlugin {
-    /// # Panics
-    /// If `config` is invalid; validate it first with [`WindConfig::validate`] or build the
-    /// field yourself with [`WindField::new`].
     fn build(&self, app: &mut App) {
         crate::configure_sets(app);
+        let schedule = crate::simulation_schedule(app);
         app.register_type::<WindConfig>()
+            .register_type::<WindSettings>()
+            .register_type::<WindField>()
+            .register_type::<super::WindSnapshot>()
             .add_message::<WindRebuilt>()
-            .add_systems(PreUpdate, finish_wind_rebuild)
             .add_systems(
-                FixedUpdate,
-                advance_wind_clock
-                    .run_if(resource_exists::<WindField>)
+                RunFixedMainLoop,
+                apply_wind_settings.in_set(WindfallSystems::Prepare),
+            )
+            .add_systems(
+                schedule,
+                (
+                    land_wind_rebuild,
+                    advance_wind_clock.run_if(resource_exists::<WindField>),
+                )
+                    .chain()
                     .in_set(WindfallSystems::Wind),
             );
         if let Some(config) = &self.config
             && !app.world().contains_resource::<WindField>()
         {
-            let field = WindField::new(config.clone())
-                .unwrap_or_else(|e| panic!("WindPlugin: invalid WindConfig: {e}"));
-            app.insert_resource(field);
+            match WindField::new(config.clone()) {
+                Ok(field) => {
+                    app.insert_resource(field);
+                }
+                Err(e) => error!("WindPlugin: invalid WindConfig ({e}); no wind is inserted"),
+            }
+        }
+        let live = app
+            .world()
+            .get_resource::<WindField>()
+            .map(|f| f.config().clone());
+        if let Some(config) = live
+            && !app.world().contains_resource::<WindSettings>()
+        {
+            app.insert_resource(WindSettings::new(config));
         }
     }
 }
 
-/// Advances the [`WindField`] clock by one fixed timestep.
-pub fn advance_wind_clock(time: Res<Time<Fixed>>, mut wind: ResMut<WindField>) {
+/// Advances the [`WindField`] clock by one step of the schedule's clock (the fixed step in
+/// [`FixedUpdate`]).
+pub fn advance_wind_clock(time: Res<Time>, mut wind: ResMut<WindField>) {
     wind.advance(time.delta_secs());
 }
