@@ -1,7 +1,8 @@
 //! Generation and sampling cost of the wind field, side by side with baselines:
 //! - generation against bare rustfft n-D inverse transforms of the same size (SIMD and scalar
 //!   planners), three of them, one per wind component;
-//! - sampling against the `noise` crate's `Fbm<Perlin>` at 4 octaves.
+//! - sampling against the `noise` crate's `Fbm<Perlin>` at 4 octaves;
+//! - sampling with 16 local sources against sampling with none.
 //!
 //! Run: `cargo bench --bench wind`. Figures are in the README's Performance section.
 
@@ -11,7 +12,9 @@ use std::time::Duration;
 
 use bevy::math::{Vec2, Vec3};
 use bevy_windfall::spectrum::FftBackend;
-use bevy_windfall::wind::{SpatialMode, TemporalMode, WindConfig, WindField};
+use bevy_windfall::wind::{
+    SpatialMode, TemporalMode, WindConfig, WindField, WindPlugin, WindSource,
+};
 use criterion::{BenchmarkId, Criterion, criterion_main};
 use noise::{Fbm, MultiFractal, NoiseFn, Perlin};
 use rustfft::{Fft, FftPlanner, FftPlannerScalar, num_complex::Complex};
@@ -138,18 +141,23 @@ fn generation(c: &mut Criterion) {
     group.finish();
 }
 
+/// 4096 points spread over a 97 × 20 × 89 m box.
+fn points() -> Vec<Vec3> {
+    (0..4096)
+        .map(|i| {
+            let f = i as f32;
+            Vec3::new(f * 0.37 % 97.0, 0.5 + f * 0.11 % 20.0, f * 0.73 % 89.0)
+        })
+        .collect()
+}
+
 fn sampling(c: &mut Criterion) {
     let mut group = c.benchmark_group("sample_4096_points");
     group
         .sample_size(20)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
-    let points: Vec<Vec3> = (0..4096)
-        .map(|i| {
-            let f = i as f32;
-            Vec3::new(f * 0.37 % 97.0, 0.5 + f * 0.11 % 20.0, f * 0.73 % 89.0)
-        })
-        .collect();
+    let points = points();
     let modes = [
         ("plane_frozen", SpatialMode::Plane, TemporalMode::Frozen),
         (
@@ -191,8 +199,73 @@ fn sampling(c: &mut Criterion) {
     group.finish();
 }
 
+/// The field of a headless app after one fixed step with `sources` placed: what systems sample.
+fn field_with(sources: &[(WindSource, Vec3)]) -> WindField {
+    use bevy::prelude::*;
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin))
+        .add_plugins(WindPlugin::new(WindConfig {
+            grid: [64, 64],
+            direction: Vec2::new(1.0, 0.3),
+            ..WindConfig::default()
+        }));
+    for &(source, at) in sources {
+        app.world_mut()
+            .spawn((source, Transform::from_translation(at)));
+    }
+    app.world_mut().run_schedule(FixedUpdate);
+    let field = app.world().resource::<WindField>().clone();
+    assert_eq!(field.source_count(), sources.len());
+    field
+}
+
+/// Local sources: 4096 points sampled with none, with 16 scattered over the points' 97 × 89 m
+/// area (5 m each: most points are outside every one, as in a game), and with 16 that all cover
+/// every point (the worst case). The target: 16 sources cost at most 2× none.
+fn sources(c: &mut Criterion) {
+    let mut group = c.benchmark_group("sample_4096_points_with_sources");
+    group
+        .sample_size(20)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    let points = points();
+    let kinds = |i: usize, reach: f32| match i % 4 {
+        0 => WindSource::sphere(reach, Vec3::new(2.0, 1.0, 0.0)),
+        1 => WindSource::fan(reach, 0.5, 6.0),
+        2 => WindSource::vortex(reach, 8.0).with_updraft(2.0),
+        _ => WindSource::blast(20.0, 1.0, reach),
+    };
+    let scattered: Vec<(WindSource, Vec3)> = (0..16)
+        .map(|i| {
+            let f = i as f32;
+            (
+                kinds(i, 5.0),
+                Vec3::new(f * 23.0 % 97.0, 2.0, f * 41.0 % 89.0),
+            )
+        })
+        .collect();
+    let covering: Vec<(WindSource, Vec3)> = (0..16)
+        .map(|i| (kinds(i, 200.0), Vec3::new(48.0, 10.0, 44.0)))
+        .collect();
+    let cases = [
+        ("none", field_with(&[])),
+        ("16_scattered", field_with(&scattered)),
+        ("16_covering_every_point", field_with(&covering)),
+    ];
+    for (name, field) in cases {
+        let mut out = Vec::with_capacity(points.len());
+        group.bench_function(BenchmarkId::new("plane_frozen", name), |b| {
+            b.iter(|| {
+                field.velocities_at(black_box(&points), 2.0, &mut out);
+                black_box(out[7])
+            })
+        });
+    }
+    group.finish();
+}
+
 #[allow(missing_docs)]
 mod group {
-    criterion::criterion_group!(benches, super::generation, super::sampling);
+    criterion::criterion_group!(benches, super::generation, super::sampling, super::sources);
 }
 criterion_main!(group::benches);

@@ -60,6 +60,11 @@
 //! at once with `wind.velocities_at(&points, t, &mut out)`. [`WindPlugin`](wind::WindPlugin)
 //! inserts it and advances its clock; [`WindSettings`](wind::WindSettings) changes it live.
 //!
+//! Local wind: a [`WindSource`](wind::WindSource) component (a sphere, a fan, a vortex, a blast)
+//! adds its velocity to the field where it is, from the next fixed step on; everything that
+//! samples the field feels it (falling objects, cloth, plates, avian bodies), and a strong enough
+//! gust lifts a resting leaf again ([`LIFT_OFF_FACTOR`](freefall::LIFT_OFF_FACTOR)).
+//!
 //! # Falling objects
 //!
 //! [`FallingObject`](freefall::FallingObject) (with [`FallPreset`](freefall::FallPreset)s for
@@ -122,12 +127,19 @@
 //!
 //! A bad value is a typed error that names the field: constructors return
 //! [`WindError`](wind::WindError), [`FreeFallError`](freefall::FreeFallError),
-//! [`ClothError`](cloth::ClothError) or [`AeroError`](aero::AeroError). A bad component at run
-//! time gets an `…Invalid` component holding its error
+//! [`ClothError`](cloth::ClothError), [`AeroError`](aero::AeroError) or
+//! [`SpectrumError`](spectrum::SpectrumError). Validation checks what is used (the log ratio
+//! ln(h/z0), the unit direction, the node mass), not only the raw fields, and every allocation
+//! sized by user input has a documented budget checked before allocating
+//! ([`spectrum::MAX_NODES`], [`cloth::MAX_NOISE_CELLS`], [`cloth::MAX_CLOTH_NODES`],
+//! [`freefall::ode::MAX_TRAJECTORY_STEPS`]). A bad component, or a transform that is not finite
+//! or lies beyond ±[`MAX_COORDINATE`], gets an `…Invalid` component holding its error
 //! ([`FallingObjectInvalid`](freefall::FallingObjectInvalid),
-//! [`ClothInvalid`](cloth::ClothInvalid), [`PhysicalClothInvalid`](aero::PhysicalClothInvalid)),
-//! logged once with `warn!`, and stays still; fixing the component clears it. A plugin never
-//! panics on bad settings: it logs an error and leaves the part out.
+//! [`AeroBodyInvalid`](aero::AeroBodyInvalid), [`ClothInvalid`](cloth::ClothInvalid),
+//! [`PhysicalClothInvalid`](aero::PhysicalClothInvalid)), logged once with `warn!`, and holds
+//! still; fixing it clears the component. Runtime knobs clamp instead (a step, a wind speed, the
+//! wind clock, solver iterations), as their docs say. A plugin never panics on bad settings or a
+//! removed resource: it logs and leaves the part out.
 //!
 //! # Determinism and multiplayer
 //!
@@ -173,10 +185,13 @@ use bevy::reflect::std_traits::ReflectDefault;
 pub mod aero;
 pub mod cloth;
 pub mod freefall;
+mod guard;
 #[cfg(feature = "egui")]
 pub mod inspector;
 pub mod spectrum;
 pub mod wind;
+
+pub use guard::MAX_COORDINATE;
 
 /// The most used types.
 pub mod prelude {

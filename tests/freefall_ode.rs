@@ -50,10 +50,12 @@ fn rk4_converges_fastest_on_the_flutter() {
         ..OdeState::default()
     };
     let reference = *ode::trajectory(&params, start, 1e-4, 1.0, Integrator::Rk4)
+        .unwrap()
         .last()
         .unwrap();
     let error_of = |dt: f64, method| {
         let s = *ode::trajectory(&params, start, dt, 1.0, method)
+            .unwrap()
             .last()
             .unwrap();
         ((s.x - reference.x).powi(2) + (s.y - reference.y).powi(2)).sqrt()

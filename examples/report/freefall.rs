@@ -33,6 +33,7 @@ fn error(a: &OdeState, b: &OdeState) -> f64 {
 
 fn end_of(params: &TanabeKaneko, dt: f64, method: Integrator) -> OdeState {
     *ode::trajectory(params, start(), dt, DURATION, method)
+        .expect("a valid step")
         .last()
         .expect("a trajectory")
 }
@@ -65,7 +66,7 @@ pub fn report(r: &mut Report) {
                 (2000.0 * dt).clamp(1.0, 200.0) as usize * 5
             };
             let seconds = seconds_per(repeats, || {
-                black_box(ode::trajectory(
+                let _ = black_box(ode::trajectory(
                     &params,
                     black_box(start()),
                     dt,

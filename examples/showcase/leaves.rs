@@ -7,6 +7,7 @@ use bevy::prelude::*;
 use bevy_windfall::aero::{AeroState, PlateState};
 use bevy_windfall::freefall::{FallPreset, FallRng, PrimitiveMotion};
 use bevy_windfall::prelude::*;
+use bevy_windfall::wind::WindSource;
 
 use super::common::leaf::{Outline, leaf_mesh};
 use super::population::{CANOPY, Canopy, KINDS, LEAVES, leaf};
@@ -22,8 +23,62 @@ pub fn plugin(app: &mut App) {
         .add_systems(OnEnter(Scene::Leaves), setup)
         .add_systems(
             Update,
-            (rest_and_release, respawn_physical, show_info).run_if(in_state(Scene::Leaves)),
+            (
+                rest_and_release,
+                respawn_physical,
+                wander,
+                blast_on_key,
+                show_info,
+            )
+                .run_if(in_state(Scene::Leaves)),
         );
+}
+
+/// A dust devil wandering round the meadow: a [`WindSource`] vortex with an updraft, lifting
+/// the leaves it passes over.
+#[derive(Component)]
+struct DustDevil;
+
+/// Where the dust devil is at `t` seconds: a slow loop round the tree, through the camera's view.
+fn devil_at(t: f32) -> Vec3 {
+    Vec3::new(
+        CANOPY.x + 1.5 + 1.5 * (0.21 * t).cos(),
+        1.2,
+        CANOPY.z - 0.5 + 1.8 * (0.13 * t).sin(),
+    )
+}
+
+fn wander(mut devil: Query<&mut Transform, With<DustDevil>>, time: Res<Time>) {
+    for mut t in &mut devil {
+        t.translation = devil_at(time.elapsed_secs());
+    }
+}
+
+/// A blast that goes off with B and is despawned once over.
+#[derive(Component)]
+struct Blast(Timer);
+
+/// B: a burst at ground level by the tree (its centre a metre down, so the air leaves the ground
+/// upward and outward) sweeps the resting leaves up and away.
+fn blast_on_key(
+    mut commands: Commands,
+    keys: Res<ButtonInput<KeyCode>>,
+    mut blasts: Query<(Entity, &mut Blast)>,
+    time: Res<Time>,
+) {
+    if keys.just_pressed(KeyCode::KeyB) {
+        commands.spawn((
+            WindSource::blast(16.0, 12.0, 5.0),
+            Transform::from_translation(CANOPY.with_y(-1.0) + Vec3::new(1.8, 0.0, 0.6)),
+            Blast(Timer::from_seconds(1.5, TimerMode::Once)),
+            DespawnOnExit(Scene::Leaves),
+        ));
+    }
+    for (entity, mut blast) in &mut blasts {
+        if blast.0.tick(time.delta()).is_finished() {
+            commands.entity(entity).despawn();
+        }
+    }
 }
 
 #[derive(Resource)]
@@ -162,6 +217,13 @@ fn setup(
             entity.insert((Featured, Name::new("featured leaf")));
         }
     }
+    commands.spawn((
+        WindSource::vortex(2.4, 5.0).with_updraft(2.5),
+        Transform::from_translation(devil_at(0.0)),
+        DustDevil,
+        Name::new("dust devil"),
+        here.clone(),
+    ));
     // Physical leaves: rigid 7.3 × 4.2 cm plates, each face with lift and drag.
     let plate = RigidPlate::rectangle(0.073, 0.042, 3e-4, 500.0, AeroCoefficients::default(), 2)
         .expect("a valid plate");
@@ -248,6 +310,6 @@ fn show_info(
             line += &format!("  {} {}", m.label(), counts[m.index()]);
         }
     }
-    line += &format!("   on the ground: {grounded}");
+    line += &format!("   on the ground: {grounded}   B: a blast");
     info.0 = line;
 }

@@ -4,8 +4,9 @@
 //! and the aero bodies live.
 //!
 //! Keys: 1 leaves, 2 coin, 3 flag, 4 gallery · G gizmos (off, wind, paths and yarns, all) ·
-//! ↑/↓ wind speed · ←/→ wind direction · in the flag scene V flag/banner/curtain, F
-//! frozen/non-frozen.
+//! ↑/↓ wind speed · ←/→ wind direction · in the leaves scene B a blast (a dust devil wanders
+//! anyway) · in the flag scene V flag/banner/curtain, F frozen/non-frozen (the curtain has a
+//! fan).
 //!
 //! `cargo run --example showcase --features example_scenes,egui -- [--scene leaves|coin|flag|gallery]
 //! [--fabric flag|banner|curtain] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`

@@ -5,7 +5,7 @@ use bevy::math::Vec3;
 
 use super::force::face_force;
 use super::plate::{AeroCoefficients, AeroError};
-use crate::cloth::ClothGrid;
+use crate::cloth::{ClothError, ClothGrid};
 
 /// Which nodes hold still.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, bevy::reflect::Reflect)]
@@ -18,6 +18,12 @@ pub enum Pinning {
 
 /// Most substeps per step.
 pub const CLOTH_MAX_SUBSTEPS: u32 = 64;
+/// Most constraint iterations per substep: [`ParticleCloth::iterations`] is clamped to it.
+pub const CLOTH_MAX_ITERATIONS: usize = 64;
+/// Node masses a particle cloth accepts, kg: lighter nodes would make 1/m overflow the solver's
+/// rates, heavier ones lose every force to rounding.
+const MIN_NODE_MASS: f64 = 1e-12;
+const MAX_NODE_MASS: f64 = 1e9;
 
 /// A `rows × columns` grid of particles laid out like [`ClothSim`](crate::cloth::ClothSim)'s
 /// (x along the yarns from the pole, y up, top row at y = 0), in the body's local frame.
@@ -43,9 +49,10 @@ pub struct ParticleCloth {
     tethers: Vec<(u32, u32, f32)>,
     node_mass: f32,
     coefficients: AeroCoefficients,
-    /// Constraint iterations per substep.
+    /// Constraint iterations per substep, used within 1..=[`CLOTH_MAX_ITERATIONS`].
     pub iterations: usize,
-    /// Fewest substeps per step (XPBD converges by substeps more than by iterations).
+    /// Fewest substeps per step (XPBD converges by substeps more than by iterations), used
+    /// within 1..=[`CLOTH_MAX_SUBSTEPS`].
     pub min_substeps: u32,
     lift: Vec<Vec3>,
     drag: Vec<f32>,
@@ -67,10 +74,24 @@ impl ParticleCloth {
             value,
             reason,
         };
-        grid.validate()
-            .map_err(|_| invalid("grid", grid.width, "rows ≥ 2, columns ≥ 2, sizes > 0"))?;
+        // The grid's own error, field and all.
+        grid.validate().map_err(|e| match e {
+            ClothError::Invalid {
+                field,
+                value,
+                reason,
+            } => invalid(field, value, reason),
+            ClothError::Count {
+                field,
+                value,
+                reason,
+            } => invalid(field, value as f32, reason),
+        })?;
         if grid.rows < 2 {
             return Err(invalid("grid.rows", grid.rows as f32, "must be ≥ 2"));
+        }
+        if grid.height <= 0.0 {
+            return Err(invalid("grid.height", grid.height, "must be > 0"));
         }
         if !(areal_density.is_finite() && areal_density > 0.0) {
             return Err(invalid(
@@ -92,7 +113,17 @@ impl ParticleCloth {
                 })
             })
             .collect();
-        let node_mass = areal_density * grid.width * grid.height / (rows * columns) as f32;
+        // Checked on what the solver divides by: the node mass, in f64 so no product overflows.
+        let node_mass = f64::from(areal_density) * f64::from(grid.width) * f64::from(grid.height)
+            / (rows * columns) as f64;
+        if !(MIN_NODE_MASS..=MAX_NODE_MASS).contains(&node_mass) {
+            return Err(invalid(
+                "areal_density",
+                areal_density,
+                "each node's mass (areal_density × width × height / nodes) must be within 1e-12..1e9 kg",
+            ));
+        }
+        let node_mass = node_mass as f32;
         let inverse_mass = (0..rows * columns)
             .map(|i| {
                 let (k, j) = (i / columns, i % columns);
@@ -203,9 +234,11 @@ impl ParticleCloth {
             .sum()
     }
 
-    /// Advances by `dt` under `gravity` in the fluid velocity `wind(p)` (local frame).
+    /// Advances by `dt` under `gravity` in the fluid velocity `wind(p)` (local frame). A
+    /// non-finite or non-positive `dt` or a non-finite `gravity` leaves the cloth as it is
+    /// (the plugin reports such a cloth with [`PhysicalClothInvalid`](super::PhysicalClothInvalid)).
     pub fn step(&mut self, dt: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
-        if !(dt.is_finite() && dt > 0.0) {
+        if !(dt.is_finite() && dt > 0.0 && gravity.is_finite()) {
             return;
         }
         let mut remaining = dt;
@@ -297,7 +330,7 @@ impl ParticleCloth {
         // XPBD: λ per constraint starts at zero each substep.
         self.lambdas.clear();
         self.lambdas.resize(self.constraints.len(), 0.0);
-        for _ in 0..self.iterations.max(1) {
+        for _ in 0..self.iterations.clamp(1, CLOTH_MAX_ITERATIONS) {
             for (lambda, &(a, b, rest, compliance)) in
                 self.lambdas.iter_mut().zip(&self.constraints)
             {

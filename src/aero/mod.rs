@@ -22,11 +22,13 @@ mod plugin;
 
 #[cfg(feature = "avian")]
 pub use avian::{AvianAero, AvianAeroPlugin};
-pub use cloth::{CLOTH_MAX_SUBSTEPS, ParticleCloth, Pinning};
+pub use cloth::{CLOTH_MAX_ITERATIONS, CLOTH_MAX_SUBSTEPS, ParticleCloth, Pinning};
 pub use force::{AIR_DENSITY, WATER_DENSITY, face_force};
 pub use plate::{
-    AeroCoefficients, AeroError, Face, LIFT_STEP, MAX_SUBSTEPS, PlateState, RigidPlate,
+    AeroCoefficients, AeroError, Face, LIFT_STEP, MAX_COEFFICIENT, MAX_FLUID_DENSITY,
+    MAX_STATE_SPEED, MAX_SUBSTEPS, PlateState, RigidPlate,
 };
 pub use plugin::{
-    AeroBody, AeroPlugin, AeroState, PhysicalCloth, PhysicalClothInvalid, PhysicalClothState,
+    AeroBody, AeroBodyInvalid, AeroPlugin, AeroState, PhysicalCloth, PhysicalClothInvalid,
+    PhysicalClothState,
 };

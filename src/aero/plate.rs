@@ -6,6 +6,7 @@ use bevy::reflect::Reflect;
 use thiserror::Error;
 
 use super::force::{drag_rate, face_force};
+use crate::freefall::{MAX_SIZE, MIN_SIZE};
 
 /// Fluid and coefficients of a body.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -71,20 +72,20 @@ impl AeroCoefficients {
         check(
             "drag",
             self.drag,
-            self.drag >= 0.0,
-            "must be finite and ≥ 0",
+            (0.0..=MAX_COEFFICIENT).contains(&self.drag),
+            "must be within 0..1e3",
         )?;
         check(
             "lift",
             self.lift,
-            self.lift >= 0.0,
-            "must be finite and ≥ 0",
+            (0.0..=MAX_COEFFICIENT).contains(&self.lift),
+            "must be within 0..1e3",
         )?;
         check(
             "density",
             self.density,
-            self.density > 0.0,
-            "must be finite and > 0",
+            self.density > 0.0 && self.density <= MAX_FLUID_DENSITY,
+            "must be > 0 and ≤ 1e5 kg/m³",
         )
     }
 }
@@ -133,6 +134,52 @@ impl Default for PlateState {
     }
 }
 
+/// Largest drag or lift coefficient accepted.
+pub const MAX_COEFFICIENT: f32 = 1.0e3;
+/// Largest fluid density accepted, kg/m³ (a hundred times water's).
+pub const MAX_FLUID_DENSITY: f32 = 1.0e5;
+
+/// Largest speed (m/s) or spin (rad/s) a [`PlateState`] may start from.
+pub const MAX_STATE_SPEED: f32 = 1.0e6;
+
+impl PlateState {
+    /// Checks that the state can be simulated: a finite position within
+    /// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE), a rotation that is finite and not zero (any
+    /// length: it is normalised), and finite velocities within [`MAX_STATE_SPEED`]. The field
+    /// names start with `state.`.
+    pub fn validate(&self) -> Result<(), AeroError> {
+        let invalid = |field, value, reason| AeroError::Invalid {
+            field,
+            value,
+            reason,
+        };
+        if let Some(value) = crate::guard::bad_position(self.position) {
+            return Err(invalid(
+                "state.position",
+                value,
+                "must be finite and within ±1e7 m",
+            ));
+        }
+        if crate::guard::unit_quat(self.rotation).is_none() {
+            return Err(invalid(
+                "state.rotation",
+                self.rotation.length(),
+                "must be a finite, non-zero quaternion",
+            ));
+        }
+        for (field, v) in [
+            ("state.velocity", self.velocity),
+            ("state.angular_velocity", self.angular_velocity),
+        ] {
+            let largest = v.abs().max_element();
+            if largest.is_nan() || largest > MAX_STATE_SPEED {
+                return Err(invalid(field, largest, "must be finite and within ±1e6"));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Largest substeps per step; past it the step's substeps grow (the drag stays implicit).
 pub const MAX_SUBSTEPS: u32 = 256;
 /// Largest h × (lift rate) a substep may take.
@@ -153,9 +200,28 @@ impl RigidPlate {
             ("length", length),
             ("width", width),
             ("thickness", thickness),
-            ("density", density),
         ] {
-            check(field, value, value > 0.0, "must be finite and > 0")?;
+            check(
+                field,
+                value,
+                (MIN_SIZE..=MAX_SIZE).contains(&value),
+                "must be within 1e-7..1e3 m",
+            )?;
+        }
+        check(
+            "density",
+            density,
+            density > 0.0 && density <= 1e7,
+            "must be > 0 and ≤ 1e7 kg/m³",
+        )?;
+        // Checked on what the solver divides by: the mass, in f64.
+        let mass = f64::from(density) * f64::from(length) * f64::from(width) * f64::from(thickness);
+        if mass < 1e-30 {
+            return Err(AeroError::Invalid {
+                field: "density",
+                value: density,
+                reason: "the plate's mass (density × length × width × thickness) must be ≥ 1e-30 kg",
+            });
         }
         coefficients.validate()?;
         let cells = cells.clamp(1, 64);
@@ -184,7 +250,8 @@ impl RigidPlate {
     }
 
     /// A body from its faces (body frame), mass (kg), principal moments (kg m²) and
-    /// coefficients. Faces with zero area or a zero or non-finite normal exert no force.
+    /// coefficients. Faces with zero area or a zero or non-finite normal exert no force; a
+    /// finite normal of any length (subnormal to `f32::MAX`) is normalised.
     pub fn new(
         faces: Vec<Face>,
         mass: f32,
@@ -206,7 +273,7 @@ impl RigidPlate {
             .into_iter()
             .filter(|f| f.center.is_finite() && f.area.is_finite() && f.area > 0.0)
             .filter_map(|f| {
-                let normal = f.normal.try_normalize()?;
+                let normal = crate::guard::unit_vec3(f.normal)?;
                 Some(Face { normal, ..f })
             })
             .collect();
@@ -301,6 +368,10 @@ impl RigidPlate {
     /// `wind_is_still` is true, or the wind is the same at every face, a substep that would add
     /// energy (in the wind's frame) through rounding or the explicit lift has its velocities
     /// relative to the wind scaled back so that this energy does not grow.
+    ///
+    /// A non-finite or non-positive `dt`, a non-finite `gravity` or a state that fails
+    /// [`PlateState::validate`] leaves `s` as it is (the plugin reports such a body with
+    /// [`AeroBodyInvalid`](super::AeroBodyInvalid)).
     pub fn step(
         &self,
         s: &mut PlateState,
@@ -309,8 +380,11 @@ impl RigidPlate {
         wind: &impl Fn(Vec3) -> Vec3,
         wind_is_still: bool,
     ) {
-        if !(dt.is_finite() && dt > 0.0) {
+        if !(dt.is_finite() && dt > 0.0 && gravity.is_finite()) || s.validate().is_err() {
             return;
+        }
+        if let Some(rotation) = crate::guard::unit_quat(s.rotation) {
+            s.rotation = rotation;
         }
         let mut remaining = dt;
         for i in 0..MAX_SUBSTEPS {

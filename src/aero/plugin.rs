@@ -4,6 +4,8 @@
 use bevy::app::{App, Plugin, PostUpdate};
 use bevy::asset::Assets;
 use bevy::ecs::prelude::*;
+use std::sync::{Mutex, PoisonError};
+
 use bevy::math::{Quat, Vec3};
 use bevy::mesh::{Mesh, Mesh3d};
 use bevy::reflect::Reflect;
@@ -199,7 +201,9 @@ pub struct PhysicalClothState(pub ParticleCloth);
 #[derive(Component, Clone, Debug, Default)]
 struct PreviousPositions(Vec<Vec3>);
 
-/// Why a [`PhysicalCloth`] has no state (logged once as a warning when it appears).
+/// Why a [`PhysicalCloth`] has no state (logged once as a warning when it appears), or, with
+/// field `transform`, why it holds still: its global transform is not finite, not invertible
+/// or beyond ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) (removed once it is).
 ///
 /// # Example
 ///
@@ -221,6 +225,52 @@ struct PreviousPositions(Vec<Vec3>);
 #[reflect(Component, Debug)]
 pub struct PhysicalClothInvalid(pub AeroError);
 
+/// Why an [`AeroBody`] holds still (logged once as a warning, removed when it can move again):
+/// a start [`Transform`] or an [`AeroState`] that is not finite or lies beyond
+/// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) (field `state.position`), a zero quaternion
+/// (`state.rotation`), velocities beyond [`MAX_STATE_SPEED`](super::MAX_STATE_SPEED), or a
+/// non-finite or huge [`AeroBody::gravity`] (`gravity`).
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// use bevy_windfall::aero::AeroBodyInvalid;
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// let lost = app
+///     .world_mut()
+///     .spawn((AeroBody::default(), Transform::from_xyz(f32::NAN, 2.0, 0.0)))
+///     .id();
+/// app.world_mut().run_schedule(FixedUpdate);
+/// let invalid = app.world().get::<AeroBodyInvalid>(lost).unwrap();
+/// assert_eq!(invalid.0.field(), "state.position");
+/// ```
+#[derive(Component, Clone, Copy, Debug, PartialEq, Reflect)]
+#[reflect(Component, Debug)]
+pub struct AeroBodyInvalid(pub AeroError);
+
+/// Largest |gravity| an [`AeroBody`] accepts, m/s².
+const MAX_GRAVITY: f32 = 1.0e4;
+
+impl AeroBody {
+    /// Checks what a step needs: `gravity` and the state the body is in (or starts from).
+    fn check(&self, state: &PlateState) -> Result<(), AeroError> {
+        let g = self.gravity.abs().max_element();
+        if g.is_nan() || g > MAX_GRAVITY {
+            return Err(AeroError::Invalid {
+                field: "gravity",
+                value: g,
+                reason: "must be finite and within ±1e4 m/s²",
+            });
+        }
+        state.validate()
+    }
+}
+
 /// Moves every [`AeroBody`] and [`PhysicalCloth`] on the fixed timestep.
 pub struct AeroPlugin;
 
@@ -230,6 +280,7 @@ impl Plugin for AeroPlugin {
         let schedule = crate::simulation_schedule(app);
         app.register_type::<AeroBody>()
             .register_type::<AeroState>()
+            .register_type::<AeroBodyInvalid>()
             .register_type::<PhysicalCloth>()
             .register_type::<PhysicalClothInvalid>()
             .add_observer(init_on_insert)
@@ -311,20 +362,45 @@ fn init_cloth(
 }
 
 fn step_cloths(
+    mut commands: Commands,
     mut cloths: Query<(
+        Entity,
         &mut PhysicalClothState,
         &mut PreviousPositions,
         &GlobalTransform,
+        Has<PhysicalClothInvalid>,
     )>,
     wind: Option<Res<WindField>>,
     time: Res<Time>,
 ) {
     let dt = time.delta_secs();
     let wind = wind.as_deref();
-    for (mut state, mut previous, transform) in &mut cloths {
+    for (entity, mut state, mut previous, transform, flagged) in &mut cloths {
         previous.0.clear();
         previous.0.extend_from_slice(state.0.positions());
         let affine = transform.affine();
+        // A transform that cannot place the cloth: it holds still, reported once.
+        let bad = crate::guard::bad_affine(&affine);
+        if bad.is_some() != flagged {
+            let mut e = commands.entity(entity);
+            match bad {
+                Some(value) => {
+                    let error = AeroError::Invalid {
+                        field: "transform",
+                        value,
+                        reason: "the global transform must be finite, invertible and within ±1e7 m",
+                    };
+                    bevy::log::warn!("PhysicalCloth {entity}: {error}; it holds still");
+                    e.insert(PhysicalClothInvalid(error));
+                }
+                None => {
+                    e.remove::<PhysicalClothInvalid>();
+                }
+            }
+        }
+        if bad.is_some() {
+            continue;
+        }
         let inverse = affine.inverse();
         let gravity = inverse.transform_vector3(Vec3::new(0.0, -9.81, 0.0));
         // Sampled at the node's world position, turned into the local frame.
@@ -370,20 +446,43 @@ fn write_cloth_meshes(
 }
 
 fn step_bodies(
-    mut bodies: Query<(&AeroBody, &mut AeroState, &Transform)>,
+    mut commands: Commands,
+    mut bodies: Query<(
+        Entity,
+        &AeroBody,
+        &mut AeroState,
+        &Transform,
+        Has<AeroBodyInvalid>,
+    )>,
     wind: Option<Res<WindField>>,
     time: Res<Time>,
 ) {
     let dt = time.delta_secs();
     let wind = wind.as_deref();
+    let verdicts = Mutex::new(Vec::new());
     bodies
         .par_iter_mut()
-        .for_each(|(body, mut state, transform)| {
+        .for_each(|(entity, body, mut state, transform, flagged)| {
             if !state.started {
-                state.started = true;
+                // Started from the transform; a bad one waits (reported) until it is fixed.
                 state.state.position = transform.translation;
                 state.state.rotation = transform.rotation;
             }
+            let verdict = body.check(&state.state);
+            if verdict.is_err() != flagged {
+                verdicts
+                    .lock()
+                    .unwrap_or_else(PoisonError::into_inner)
+                    .push((entity, verdict.err()));
+            }
+            let Some(rotation) = crate::guard::unit_quat(state.state.rotation) else {
+                return;
+            };
+            if verdict.is_err() {
+                return;
+            }
+            state.state.rotation = rotation;
+            state.started = true;
             state.previous = (state.state.position, state.state.rotation);
             let s = &mut state.state;
             match wind {
@@ -393,7 +492,7 @@ fn step_bodies(
                 None => body.plate.step(s, dt, body.gravity, &|_| Vec3::ZERO, true),
             }
             if !state.state.position.is_finite() || !state.state.rotation.is_finite() {
-                // Kept finite by the plate's step; a NaN start (a NaN transform) stays put.
+                // The plate's step keeps a valid state finite; should it not, hold still.
                 state.state = PlateState {
                     position: state.previous.0,
                     rotation: state.previous.1,
@@ -401,6 +500,21 @@ fn step_bodies(
                 };
             }
         });
+    let mut verdicts = verdicts
+        .into_inner()
+        .unwrap_or_else(PoisonError::into_inner);
+    verdicts.sort_by_key(|v| v.0);
+    for (entity, verdict) in verdicts {
+        match verdict {
+            Some(error) => {
+                bevy::log::warn!("AeroBody {entity}: {error}; it holds still");
+                commands.entity(entity).insert(AeroBodyInvalid(error));
+            }
+            None => {
+                commands.entity(entity).remove::<AeroBodyInvalid>();
+            }
+        }
+    }
 }
 
 /// Poses every started [`AeroBody`] between its last two fixed steps, by how far the frame is

@@ -39,6 +39,7 @@ pub use mesh::{cloth_mesh, write_cloth_mesh};
 pub use noise::NoiseSheet;
 pub use params::{
     ClothError, ClothGrid, ClothParams, ClothWindModel, LeadingYarn, MAX_CLOTH_NODES,
+    MAX_CLOTH_SIZE,
 };
 pub use plugin::{Cloth, ClothInvalid, ClothPlugin, ClothState, wind_steps_per_frame};
 pub use presets::ClothPreset;

@@ -180,6 +180,8 @@ fn finite(
 
 /// Most nodes a cloth may have (1024 × 1024).
 pub const MAX_CLOTH_NODES: usize = 1 << 20;
+/// Largest width or height of a cloth, m: every node position stays far inside f32's range.
+pub const MAX_CLOTH_SIZE: f32 = 1.0e4;
 
 impl ClothGrid {
     /// Checks the grid.
@@ -209,14 +211,14 @@ impl ClothGrid {
         finite(
             "grid.width",
             self.width,
-            self.width > 0.0,
-            "must be finite and > 0",
+            self.width > 0.0 && self.width <= MAX_CLOTH_SIZE,
+            "must be > 0 and ≤ 1e4 m",
         )?;
         finite(
             "grid.height",
             self.height,
-            self.height >= 0.0,
-            "must be finite and ≥ 0",
+            self.height >= 0.0 && self.height <= MAX_CLOTH_SIZE,
+            "must be ≥ 0 and ≤ 1e4 m",
         )
     }
 }

@@ -102,7 +102,11 @@ pub struct ClothState {
     pub wind_speed: f32,
 }
 
-/// Why a [`Cloth`] has no [`ClothState`] (logged once as a warning when it appears).
+/// Why a [`Cloth`] has no [`ClothState`] (logged once as a warning when it appears), or, with
+/// field `transform`, why it does not feel the [`WindField`]: a cloth that follows the wind but
+/// whose global transform is not finite, not invertible or beyond
+/// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) flaps at its own `params.wind_speed` until the
+/// transform is fixed (then this goes).
 ///
 /// # Example
 ///
@@ -266,14 +270,41 @@ fn init_cloth(
 const TURN_TIME: f32 = 0.6;
 
 fn step_cloths(
+    mut commands: Commands,
     time: Res<Time>,
     wind: Option<Res<WindField>>,
-    mut cloths: Query<(&Cloth, &mut ClothState, &GlobalTransform)>,
+    mut cloths: Query<(
+        Entity,
+        &Cloth,
+        &mut ClothState,
+        &GlobalTransform,
+        Has<ClothInvalid>,
+    )>,
 ) {
     let dt = time.delta_secs();
-    for (cloth, mut state, transform) in &mut cloths {
+    for (entity, cloth, mut state, transform, flagged) in &mut cloths {
         let mut speed = cloth.params.wind_speed;
-        if let Some(wind) = wind.as_deref().filter(|_| cloth.follow_wind) {
+        let wind = wind.as_deref().filter(|_| cloth.follow_wind);
+        let bad = wind.and_then(|_| crate::guard::bad_affine(&transform.affine()));
+        if bad.is_some() != flagged {
+            let mut e = commands.entity(entity);
+            match bad {
+                Some(value) => {
+                    let error = ClothError::Invalid {
+                        field: "transform",
+                        value,
+                        reason: "the global transform must be finite, invertible and within \
+                                 ±1e7 m to sample the wind",
+                    };
+                    bevy::log::warn!("Cloth {entity}: {error}; it flaps at its own wind_speed");
+                    e.insert(ClothInvalid(error));
+                }
+                None => {
+                    e.remove::<ClothInvalid>();
+                }
+            }
+        }
+        if let Some(wind) = wind.filter(|_| bad.is_none()) {
             let v = wind.velocity(transform.translation());
             let local = transform.affine().inverse().transform_vector3(v);
             let horizontal = Vec3::new(local.x, 0.0, local.z);

@@ -339,7 +339,8 @@ fn flutter_profile(params: &TanabeKaneko) -> Option<[f32; SEGMENT_SAMPLES]> {
         v: -0.01,
         ..OdeState::default()
     };
-    let run = trajectory(params, start, 1e-3, 12.0, Integrator::Rk4);
+    let run = trajectory(params, start, 1e-3, 12.0, Integrator::Rk4)
+        .expect("12 s in 1 ms steps is within the budget");
     let turns: Vec<usize> = (1..run.len())
         .filter(|&i| (run[i - 1].u < 0.0) != (run[i].u < 0.0))
         .collect();
@@ -376,7 +377,8 @@ fn tumble_profile(params: &TanabeKaneko) -> [f32; SEGMENT_SAMPLES] {
         v: -0.01,
         ..OdeState::default()
     };
-    let run = trajectory(params, start, 1e-3, 12.0, Integrator::Rk4);
+    let run = trajectory(params, start, 1e-3, 12.0, Integrator::Rk4)
+        .expect("12 s in 1 ms steps is within the budget");
     let Some(last) = run.last() else {
         return uniform;
     };

@@ -47,13 +47,15 @@ pub use gizmos::{FallGizmos, FallGizmosPlugin, FallTrail, motion_color};
 pub use markov::{BoundedChain, CHAIN_STEP, MarkovChain, MarkovError, motion_class_count};
 pub use model::FallModel;
 pub use motion::{CHAOTIC_MIN_TIME, FallScales, Glide, Piece, STROUHAL, SwingChoice};
-pub use path::{FallPath, FallRelease, StepOutcome, WindTilt};
+pub use path::{
+    FallPath, FallRelease, LIFT_OFF_FACTOR, MAX_RELEASE_SPEED, MAX_STEP, StepOutcome, WindTilt,
+};
 pub use plugin::{
     FallState, FallingObject, FallingObjectInvalid, FreeFallPlugin, FreeFallSettings, Landed,
 };
 pub use presets::FallPreset;
 pub use random::FallRng;
 pub use regime::{
-    Fluid, FreeFallError, MAX_DENSITY_RATIO, MAX_SIZE, MIN_SIZE, PHASE_DIAGRAM, PhaseRegion,
-    PrimitiveMotion, Regime, Shape, classify, regime,
+    Fluid, FreeFallError, MAX_DENSITY_RATIO, MAX_SIZE, MIN_SIZE, MIN_VISCOSITY, PHASE_DIAGRAM,
+    PhaseRegion, PrimitiveMotion, Regime, Shape, classify, regime,
 };

@@ -16,6 +16,8 @@
 //! large) as Tanabe and Kaneko report. The lift is perpendicular to (u, v), so only the damping
 //! and gravity do work: the speed stays below max(V₀, g / A∥).
 
+use super::regime::FreeFallError;
+
 /// Parameters of eq. 4 (SI units).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TanabeKaneko {
@@ -311,16 +313,39 @@ fn semi_implicit(params: &TanabeKaneko, s: &OdeState, h: f64) -> OdeState {
     }
 }
 
+/// Most steps [`trajectory`] takes: 2^22 states, 192 MiB.
+pub const MAX_TRAJECTORY_STEPS: usize = 1 << 22;
+
 /// Integrates from `state` for `duration` in steps of `dt` and returns every state, the
 /// first included.
+///
+/// # Errors
+/// `dt` not finite and > 0, `duration` not finite and ≥ 0, or more than
+/// [`MAX_TRAJECTORY_STEPS`] steps (checked before anything is allocated; the field named is
+/// `dt`).
 pub fn trajectory(
     params: &TanabeKaneko,
     state: OdeState,
     dt: f64,
     duration: f64,
     method: Integrator,
-) -> Vec<OdeState> {
-    let n = (duration / dt).round().max(0.0) as usize;
+) -> Result<Vec<OdeState>, FreeFallError> {
+    let invalid = |field, value: f64, reason| FreeFallError::Invalid {
+        field,
+        value: value as f32,
+        reason,
+    };
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(invalid("dt", dt, "must be finite and > 0"));
+    }
+    if !(duration.is_finite() && duration >= 0.0) {
+        return Err(invalid("duration", duration, "must be finite and ≥ 0"));
+    }
+    let steps = (duration / dt).round();
+    if steps > MAX_TRAJECTORY_STEPS as f64 {
+        return Err(invalid("dt", dt, "duration / dt exceeds 2^22 steps"));
+    }
+    let n = steps as usize;
     let mut out = Vec::with_capacity(n + 1);
     let mut s = state;
     out.push(s);
@@ -328,5 +353,5 @@ pub fn trajectory(
         s = step(params, s, dt, method);
         out.push(s);
     }
-    out
+    Ok(out)
 }

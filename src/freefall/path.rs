@@ -13,7 +13,7 @@ use super::markov::BoundedChain;
 use super::model::FallModel;
 use super::motion::{FallScales, Glide, Piece, SwingChoice, next_glide};
 use super::random::FallRng;
-use super::regime::PrimitiveMotion;
+use super::regime::{FreeFallError, PrimitiveMotion};
 pub use super::tilt::WindTilt;
 
 /// Most pieces one step may cross; the rest of a huge step falls straight at U.
@@ -61,6 +61,23 @@ pub struct FallRelease {
     pub ground: f32,
 }
 
+/// A resting object is lifted again when the wind where it lies is faster than this many times
+/// its descent speed U (eq. 3). A flat plate on the ground meets the flow at a small angle
+/// (C_L ≈ 0.2); its lift ½ ρ_f C_L A |w|² beats its weight ρ_s A b g when
+/// |w|² > 2 ρ_s b g / (ρ_f C_L) ≈ 10 U², so |w| > 3.2 U. A leaf (U ≈ 1 m/s) needs a strong gust
+/// or a blast; the paper's coin in air (U ≈ 5.7 m/s) a gale. Near the ground the log law's mean
+/// wind is small (zero below the roughness length), so it is mostly gusts and local sources
+/// ([`WindSource`](crate::wind::WindSource)) that lift things.
+pub const LIFT_OFF_FACTOR: f32 = 3.0;
+/// How far above the ground a lifted object starts, m.
+const LIFT_OFF_HOP: f32 = 0.01;
+
+/// Longest step [`FallPath::advance`] takes, s; a longer one is cut to it.
+pub const MAX_STEP: f32 = 60.0;
+
+/// Largest speed, m/s, a fall may be released with (and the largest wind it feels).
+pub const MAX_RELEASE_SPEED: f32 = 1.0e4;
+
 impl FallRelease {
     /// Let go at rest at `position`, flat, with a heading from the seed.
     pub fn at(position: Vec3, ground: f32) -> Self {
@@ -70,6 +87,59 @@ impl FallRelease {
             velocity: Vec3::ZERO,
             ground,
         }
+    }
+
+    /// Checks that a fall can start here: `position` and `ground` finite and within
+    /// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) (or `ground` = −∞: no ground), `rotation`
+    /// (if any) finite and not zero
+    /// (any length: it is normalised), `velocity` finite and within [`MAX_RELEASE_SPEED`].
+    /// The fields are named `release.position`, ... ; the [`FreeFallPlugin`] releases from the
+    /// entity's `Transform` and [`FreeFallSettings::ground_height`].
+    ///
+    /// [`FreeFallPlugin`]: super::FreeFallPlugin
+    /// [`FreeFallSettings::ground_height`]: super::FreeFallSettings::ground_height
+    pub fn validate(&self) -> Result<(), FreeFallError> {
+        let invalid = |field, value, reason| FreeFallError::Invalid {
+            field,
+            value,
+            reason,
+        };
+        if let Some(value) = crate::guard::bad_position(self.position) {
+            return Err(invalid(
+                "release.position",
+                value,
+                "must be finite and within ±1e7 m",
+            ));
+        }
+        // −∞ is "no ground": the fall never ends.
+        if self.ground.is_nan()
+            || self.ground > crate::MAX_COORDINATE
+            || (self.ground.is_finite() && self.ground < -crate::MAX_COORDINATE)
+        {
+            return Err(invalid(
+                "release.ground",
+                self.ground,
+                "must be within ±1e7 m, or −∞ for no ground",
+            ));
+        }
+        if let Some(q) = self.rotation
+            && crate::guard::unit_quat(q).is_none()
+        {
+            return Err(invalid(
+                "release.rotation",
+                q.length(),
+                "must be a finite, non-zero quaternion",
+            ));
+        }
+        let speed = self.velocity.abs().max_element();
+        if speed.is_nan() || speed > MAX_RELEASE_SPEED {
+            return Err(invalid(
+                "release.velocity",
+                speed,
+                "must be finite and within ±1e4 m/s",
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -165,10 +235,7 @@ impl FallPath {
         } else {
             Glide::Right
         };
-        let rotation = release
-            .rotation
-            .filter(|q| q.is_finite() && q.length_squared() > 1e-12)
-            .map(Quat::normalize);
+        let rotation = release.rotation.and_then(crate::guard::unit_quat);
         let (yaw, theta) = match rotation {
             Some(q) => heading_and_pitch(q, random_yaw),
             None => (Quat::from_rotation_y(random_yaw), 0.0),
@@ -229,6 +296,24 @@ impl FallPath {
         path
     }
 
+    /// Lets a resting object go again in a wind strong enough to lift it (see
+    /// [`LIFT_OFF_FACTOR`]): from where it lies, a hop above the ground, in the orientation it
+    /// lies in, at the wind's velocity plus half the wind's speed upward, with a new seed from
+    /// its own stream (so the same run lifts it the same way). Its clock and Markov count go on.
+    fn lift_off(&mut self, model: &FallModel, wind: Vec3) {
+        let release = FallRelease {
+            position: self.points[2] + Vec3::Y * LIFT_OFF_HOP,
+            rotation: Some(self.orientations[1]),
+            velocity: wind + Vec3::Y * (0.5 * wind.length()),
+            ground: self.ground,
+        };
+        let seed = self.rng.bits();
+        let (time, markov_steps) = (self.time, self.markov_steps);
+        *self = Self::release(model, self.scales, Arc::clone(&self.chain), seed, release);
+        self.time = time;
+        self.markov_steps = markov_steps;
+    }
+
     /// Markov steps taken (one per finished piece).
     pub fn markov_steps(&self) -> u32 {
         self.markov_steps
@@ -238,6 +323,9 @@ impl FallPath {
     /// the motion the fluid carries, relaxes toward `wind` (the fluid's velocity at the current
     /// position; zero in still fluid) over [`FallScales::response_time`], and Δf is the still-fluid
     /// path's increment; `tilt` is the wind's turn of eq. 15.
+    ///
+    /// Hostile input is clamped: `dt` to 0..=[`MAX_STEP`] (non-finite: 0), `wind` to
+    /// [`MAX_RELEASE_SPEED`] (non-finite: still fluid).
     pub fn advance(
         &mut self,
         model: &FallModel,
@@ -245,14 +333,22 @@ impl FallPath {
         wind: Vec3,
         tilt: &WindTilt,
     ) -> StepOutcome {
+        let dt = if dt.is_finite() {
+            dt.clamp(0.0, MAX_STEP)
+        } else {
+            0.0
+        };
+        let wind = crate::guard::clamp_length(wind, MAX_RELEASE_SPEED);
         if self.landed {
-            // Let the shown curve settle on the resting point.
-            self.points = [self.points[1], self.points[2], self.points[2]];
-            self.orientations = [self.orientations[1]; 2];
-            return StepOutcome::Resting;
+            if wind.length() > LIFT_OFF_FACTOR * self.scales.descent_speed {
+                self.lift_off(model, wind);
+            } else {
+                // Let the shown curve settle on the resting point.
+                self.points = [self.points[1], self.points[2], self.points[2]];
+                self.orientations = [self.orientations[1]; 2];
+                return StepOutcome::Resting;
+            }
         }
-        let dt = if dt.is_finite() { dt.max(0.0) } else { 0.0 };
-        let wind = if wind.is_finite() { wind } else { Vec3::ZERO };
         let delta = self.still_step(model, dt, wind);
         self.time += f64::from(dt);
         self.still += delta;

@@ -140,8 +140,12 @@ impl FallingObject {
     }
 
     /// Its fall let go as `release` says, with its own chain or the model's.
+    ///
+    /// # Errors
+    /// What [`Self::regime`] or [`FallRelease::validate`] reject.
     pub fn path(&self, model: &FallModel, release: FallRelease) -> Result<FallPath, FreeFallError> {
         let regime = self.regime()?;
+        release.validate()?;
         let chain = match &self.markov {
             Some(chain) => Arc::new(chain.bounded(regime.main)),
             None => model.bounded_shared(regime.main),
@@ -209,9 +213,14 @@ impl FallState {
 }
 
 /// Why a [`FallingObject`] does not fall: its description is invalid (the error names the
-/// field). Inserted in place of a fall, removed once the component is fixed; the crate's one
-/// convention for runtime failures, as [`ClothInvalid`](crate::cloth::ClothInvalid) and
-/// [`PhysicalClothInvalid`](crate::aero::PhysicalClothInvalid).
+/// field), or where it was let go is (checked by [`FallRelease::validate`]): a `Transform`
+/// whose translation is not finite or beyond ±[`MAX_COORDINATE`](crate::MAX_COORDINATE)
+/// (`release.position`), a zero or non-finite rotation (`release.rotation`), or a
+/// [`FreeFallSettings::ground_height`] that is not finite (`release.ground`). Inserted in place
+/// of a fall (logged once), removed once the component is changed and valid; the crate's one
+/// convention for runtime failures, as [`ClothInvalid`](crate::cloth::ClothInvalid),
+/// [`PhysicalClothInvalid`](crate::aero::PhysicalClothInvalid) and
+/// [`AeroBodyInvalid`](crate::aero::AeroBodyInvalid).
 ///
 /// # Example
 ///
@@ -321,9 +330,14 @@ fn release_objects(
         (Entity, &FallingObject, &Transform, &mut FallState),
         Changed<FallingObject>,
     >,
-    settings: Res<FreeFallSettings>,
-    model: Res<FallModel>,
+    settings: Option<Res<FreeFallSettings>>,
+    model: Option<Res<FallModel>>,
 ) {
+    // Without a model (removed by the user) nothing can be released; the default ground.
+    let Some(model) = model else {
+        return;
+    };
+    let settings = settings.as_deref().cloned().unwrap_or_default();
     for (entity, object, transform, mut state) in &mut objects {
         if state.released_for.as_ref() != Some(object) {
             release(
@@ -348,9 +362,10 @@ fn release_on_insert(
     settings: Option<Res<FreeFallSettings>>,
     model: Option<Res<FallModel>>,
 ) {
-    let (Some(settings), Some(model)) = (settings, model) else {
+    let Some(model) = model else {
         return;
     };
+    let settings = settings.as_deref().cloned().unwrap_or_default();
     if let Ok((object, transform, mut state)) = objects.get_mut(event.entity) {
         release(
             &mut commands,
@@ -387,12 +402,15 @@ fn release(
         velocity,
         ground: settings.ground_height,
     };
-    *state = match object.regime() {
-        Ok(regime) => {
+    let fall = object
+        .regime()
+        .and_then(|regime| Ok((regime, object.path(model, release)?)));
+    *state = match fall {
+        Ok((regime, path)) => {
             commands.entity(entity).remove::<FallingObjectInvalid>();
             FallState {
                 regime: Some(regime),
-                path: object.path(model, release).ok(),
+                path: Some(path),
                 released_for: Some(object.clone()),
             }
         }
@@ -414,10 +432,19 @@ fn release(
 fn step_objects(
     mut objects: Query<(Entity, &FallingObject, &mut FallState)>,
     wind: Option<Res<WindField>>,
-    model: Res<FallModel>,
+    model: Option<Res<FallModel>>,
     time: Res<Time>,
     mut landed: MessageWriter<Landed>,
+    mut warned: Local<bool>,
 ) {
+    // The model may have been removed: the falls wait, with one warning, until it is back.
+    let Some(model) = model else {
+        if !std::mem::replace(&mut *warned, true) {
+            bevy::log::warn!("FallModel was removed: falling objects hold still until it is back");
+        }
+        return;
+    };
+    *warned = false;
     let dt = time.delta_secs();
     let wind = wind.as_deref();
     let reference_speed = wind.map_or(1.0, |w| w.config().reference_speed);
@@ -428,10 +455,8 @@ fn step_objects(
             let Some(path) = state.path.as_mut() else {
                 return;
             };
-            let velocity = match wind {
-                Some(w) if !path.landed() => w.velocity(path.position()),
-                _ => Vec3::ZERO,
-            };
+            // Resting objects feel the wind too: a strong enough one lifts them again.
+            let velocity = wind.map_or(Vec3::ZERO, |w| w.velocity(path.position()));
             let tilt = WindTilt {
                 max_angle: object.wind_tilt,
                 reference_speed,

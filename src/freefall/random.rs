@@ -31,6 +31,11 @@ impl FallRng {
         }
     }
 
+    /// 64 uniform bits (a seed for a new stream).
+    pub fn bits(&mut self) -> u64 {
+        u64::from(self.0.next_u32()) << 32 | u64::from(self.0.next_u32())
+    }
+
     /// True with probability one half.
     pub fn coin(&mut self) -> bool {
         self.0.next_u32() & 1 == 1

@@ -257,6 +257,8 @@ impl FreeFallError {
 pub const MAX_SIZE: f32 = 1.0e3;
 /// Smallest accepted size, m (0.1 µm).
 pub const MIN_SIZE: f32 = 1.0e-7;
+/// Smallest accepted kinematic viscosity, m²/s.
+pub const MIN_VISCOSITY: f32 = 1.0e-9;
 /// Largest accepted ρ_s / ρ_f.
 pub const MAX_DENSITY_RATIO: f32 = 1.0e6;
 
@@ -327,6 +329,15 @@ pub fn regime(
         fluid.kinematic_viscosity,
         1.0e3,
     )?;
+    // Superfluid helium, the thinnest known fluid, is about 1e-8 m²/s; much less and Re
+    // overflows f32 and the phase diagram has nothing to say.
+    if fluid.kinematic_viscosity < MIN_VISCOSITY {
+        return Err(invalid(
+            "fluid.kinematic_viscosity",
+            fluid.kinematic_viscosity,
+            "must be ≥ 1e-9 m²/s",
+        ));
+    }
     positive("gravity", gravity, 1.0e4)?;
     positive("density", density, 1.0e7)?;
     let ratio = f64::from(density) / f64::from(fluid.density);

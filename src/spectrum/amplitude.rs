@@ -23,9 +23,15 @@ impl AmplitudeTable {
         let octant = GridShape::new(&half);
         let n = dims.len();
         let exponent = -(beta + n as f32 - 1.0) / 2.0;
+        // The lowest non-zero squared frequency, computed exactly as the bins' own below, so
+        // that its power is exp(0) = 1 for any β: an enormous β leaves the lowest frequencies
+        // at 1 and the rest at 0, never a field of zeros (or of overflowed powers).
         let f2_min = dims
             .iter()
-            .map(|&n| 1.0 / (n * n) as f32)
+            .map(|&len| {
+                let f = 1.0 / len as f32;
+                f * f
+            })
             .fold(f32::MAX, f32::min);
         let log_f2_min = libm::logf(f2_min);
         // Per axis: squared frequency of the bin and of its nearest alias.

@@ -9,7 +9,7 @@
 //!
 //! | quantity | meaning |
 //! |---|---|
-//! | `dims` | grid nodes per axis, row-major (last index fastest), each ≥ 2, any size |
+//! | `dims` | grid nodes per axis, row-major (last index fastest), each ≥ 2, at most [`MAX_NODES`] in all |
 //! | `beta` | spectral exponent β ≥ 0: 0 white, 1 pink, 5/3 Kolmogorov, 2 Brownian |
 //! | `seed` | 64-bit seed of a PCG stream: same seed, same field, bit for bit |
 //!
@@ -34,4 +34,4 @@ pub use fft::FftBackend;
 pub use grid::GridShape;
 pub(crate) use sample::periodic_lerp;
 pub use sample::periodic_lerp_2d;
-pub use synth::{SpectrumError, Synthesizer, fbm, fbm_pair, try_fbm, try_fbm_pair};
+pub use synth::{MAX_NODES, SpectrumError, Synthesizer, fbm, fbm_pair, try_fbm, try_fbm_pair};

@@ -25,7 +25,29 @@ pub enum SpectrumError {
     /// β is negative or not finite.
     #[error("`beta` = {0}: the spectral exponent must be finite and ≥ 0")]
     Beta(f32),
+    /// More nodes than [`MAX_NODES`] (the product saturates at `usize::MAX`).
+    #[error("`dims`: {nodes} nodes in all, more than the limit of {MAX_NODES}")]
+    TooManyNodes {
+        /// The product of `dims`, saturated.
+        nodes: usize,
+    },
 }
+
+impl SpectrumError {
+    /// The argument at fault: `"dims"` or `"beta"`.
+    pub fn field(&self) -> &'static str {
+        match self {
+            Self::Beta(_) => "beta",
+            _ => "dims",
+        }
+    }
+}
+
+/// Largest field (product of `dims`) any synthesis may make: 2^26 nodes. It is checked before
+/// anything is allocated; at the limit a field takes 512 MiB of spectrum while it is made and
+/// 256 MiB of output (twice that for a pair). Every grid derived from user input (wind fields,
+/// cloth noise) is bounded by it or by a smaller limit of its own.
+pub const MAX_NODES: usize = 1 << 26;
 
 /// A real, periodic, zero-mean, unit-variance 1/f^β field on a row-major grid.
 ///
@@ -71,6 +93,10 @@ fn validate(dims: &[usize], beta: f32) -> Result<(), SpectrumError> {
     }
     if !beta.is_finite() || beta < 0.0 {
         return Err(SpectrumError::Beta(beta));
+    }
+    let nodes = dims.iter().fold(1usize, |p, &n| p.saturating_mul(n));
+    if nodes > MAX_NODES {
+        return Err(SpectrumError::TooManyNodes { nodes });
     }
     Ok(())
 }
@@ -302,5 +328,45 @@ mod tests {
             try_fbm(&[8], f32::NAN, 0),
             Err(SpectrumError::Beta(_))
         ));
+    }
+
+    #[test]
+    fn sizes_beyond_the_budget_are_refused_before_allocating() {
+        for dims in [
+            &[1usize << 40][..],
+            &[1 << 33, 1 << 33],
+            &[1 << 20, 1 << 20],
+        ] {
+            let error = try_fbm(dims, 1.0, 0).unwrap_err();
+            assert!(
+                matches!(error, SpectrumError::TooManyNodes { .. }),
+                "{dims:?}"
+            );
+            assert_eq!(error.field(), "dims");
+        }
+        // Overflowing products saturate rather than wrap to a small, accepted size.
+        let wrap = [1usize << 32, 1 << 32, 4];
+        assert_eq!(
+            try_fbm_pair(&wrap, 1.0, 0).unwrap_err(),
+            SpectrumError::TooManyNodes { nodes: usize::MAX }
+        );
+    }
+
+    #[test]
+    fn huge_beta_still_gives_a_unit_variance_field() {
+        // Only the lowest frequencies survive an enormous β: the field is a smooth wave, never
+        // all zero or NaN, on square and non-square grids alike.
+        for dims in [&[64usize][..], &[48, 20], &[7, 12, 5]] {
+            for beta in [1.0e9f32, 3.0e20, f32::MAX] {
+                let field = try_fbm(dims, beta, 3).unwrap();
+                let n = field.len() as f64;
+                let var = field.iter().map(|&v| f64::from(v).powi(2)).sum::<f64>() / n;
+                assert!(field.iter().all(|v| v.is_finite()), "{dims:?} β {beta}");
+                assert!(
+                    (var - 1.0).abs() < 1e-3,
+                    "{dims:?} β {beta}: variance {var}"
+                );
+            }
+        }
     }
 }

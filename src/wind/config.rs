@@ -41,7 +41,7 @@ pub enum TemporalMode {
 /// | field | unit | default | meaning |
 /// |---|---|---|---|
 /// | `reference_speed` | m/s | 4.0 | mean wind speed U(h_ref) (a gentle breeze) |
-/// | `reference_height` | m | 10.0 | h_ref, where `reference_speed` holds (standard 10 m) |
+/// | `reference_height` | m | 10.0 | h_ref, where `reference_speed` holds (standard 10 m); ≥ e^0.1 z0 ([`MIN_LOG_RATIO`]) |
 /// | `roughness` | m | 0.3 | z0 of the log law (0.3: scattered trees, the paper's value) |
 /// | `direction` | – | (1, 0) | horizontal direction (x, z) the wind blows toward |
 /// | `beta` | – | 5/3 | spectral exponent (Kolmogorov) |
@@ -101,8 +101,14 @@ impl Default for WindConfig {
     }
 }
 
-/// Largest grid (including the time axis) a field may have: 2^26 nodes, 768 MiB of samples.
-pub const MAX_NODES: usize = 1 << 26;
+/// Largest grid (including the time axis) a field may have: the spectral synthesis' budget,
+/// [`crate::spectrum::MAX_NODES`] = 2^26 nodes (768 MiB of samples).
+pub const MAX_NODES: usize = crate::spectrum::MAX_NODES;
+
+/// Least accepted ln(h_ref/z0): the reference height is at least e^0.1 ≈ 1.105 times the
+/// roughness length. It keeps eq. 10's u* = κU/ln(h/z0) finite and the default turbulence
+/// intensity 1/ln(h/z0) within [`super::MAX_TURBULENCE_INTENSITY`].
+pub const MIN_LOG_RATIO: f32 = 0.1;
 
 /// A [`WindConfig`] field that is out of range. [`WindError::field`] names it.
 #[derive(Clone, Debug, Error, PartialEq)]
@@ -145,7 +151,13 @@ impl WindError {
     }
 }
 
-fn check(ok: bool, field: &'static str, value: f32, reason: &'static str) -> Result<(), WindError> {
+/// `Ok` when `ok`, otherwise an [`WindError::Invalid`] naming `field`.
+pub(super) fn check(
+    ok: bool,
+    field: &'static str,
+    value: f32,
+    reason: &'static str,
+) -> Result<(), WindError> {
     if ok {
         Ok(())
     } else {
@@ -176,11 +188,13 @@ impl WindConfig {
             "must be finite and > 0",
         )?;
         let h = self.reference_height;
+        // Checked on what is used, ln(h/z0) (eq. 10's denominator), not on h > z0 alone: one
+        // f32 step above z0 would round the logarithm to 0 and every sample to NaN.
         check(
-            h.is_finite() && h > z0,
+            h.is_finite() && h > z0 && h.ln() - z0.ln() >= MIN_LOG_RATIO,
             "reference_height",
             h,
-            "must be finite and above `roughness`",
+            "must be finite and at least 1.105 × `roughness` (ln(h/z0) ≥ 0.1)",
         )?;
         let u = self.reference_speed;
         check(
@@ -191,9 +205,9 @@ impl WindConfig {
         )?;
         let d = self.direction;
         check(
-            d.is_finite() && d.length_squared() > 0.0,
+            crate::guard::unit_vec2(d).is_some(),
             "direction",
-            d.length(),
+            d.abs().max_element(),
             "must be finite and non-zero",
         )?;
         check(

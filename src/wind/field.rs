@@ -7,12 +7,16 @@ use bevy::reflect::Reflect;
 
 use super::config::{SpatialMode, TemporalMode, WindConfig, WindError};
 use super::profile;
+use super::source::PlacedSource;
 use crate::spectrum::{GridShape, SpectrumError, Synthesizer, periodic_lerp, periodic_lerp_2d};
 
 /// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
 pub const MAX_REFERENCE_SPEED: f32 = 1.0e4;
 /// Highest accepted `turbulence_intensity`.
 pub const MAX_TURBULENCE_INTENSITY: f32 = 10.0;
+/// Bound of the wind clock, s (about 31 700 years): [`WindField::advance`] and
+/// [`WindField::set_clock`] clamp to ±this, so the clock and [`WindField::time`] stay finite.
+pub const MAX_CLOCK: f64 = 1.0e12;
 
 /// Wind velocity anywhere in space and time: a logarithmic mean profile (eq. 10 of
 /// `free-fall-motion-synthesis.txt`) plus three independent 1/f^β turbulence components with the
@@ -70,6 +74,8 @@ pub struct WindField {
     /// Which field this is: every field made by [`WindField::new`] gets its own number (a clone
     /// keeps it).
     generation: u64,
+    /// The [`WindSource`](super::WindSource)s placed at the last fixed step, by entity.
+    sources: Vec<PlacedSource>,
 }
 
 /// Numbers the fields made by [`WindField::new`].
@@ -91,6 +97,10 @@ impl WindField {
             SpectrumError::NoAxis | SpectrumError::AxisTooShort { .. } => WindError::GridAxis {
                 field: "grid",
                 len: 0,
+            },
+            SpectrumError::TooManyNodes { nodes } => WindError::TooManyNodes {
+                field: "grid",
+                nodes,
             },
         })?;
         let (u, v) = synth.pair(config.seed);
@@ -115,6 +125,7 @@ impl WindField {
             time_scale: 1.0,
             paused: false,
             generation: GENERATIONS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            sources: Vec::new(),
         };
         field.derive();
         Ok(field)
@@ -131,7 +142,8 @@ impl WindField {
         self.sigma_u = intensity * c.reference_speed;
         self.log_reference = profile::log_ratio(c.reference_height, c.roughness);
         self.log_roughness = c.roughness.ln();
-        let d = c.direction.normalize();
+        // Validated: the direction has a unit vector, whatever its length.
+        let d = crate::guard::unit_vec2(c.direction).unwrap_or(Vec2::X);
         self.along = Vec3::new(d.x, 0.0, d.y);
         self.across = self.along.cross(Vec3::Y);
     }
@@ -200,19 +212,21 @@ impl WindField {
         self.time
     }
 
-    /// Sets the wind clock to `time` seconds (a non-finite time is ignored).
+    /// Sets the wind clock to `time` seconds, clamped to ±[`MAX_CLOCK`] (a non-finite time is
+    /// ignored).
     pub fn set_clock(&mut self, time: f64) {
         if time.is_finite() {
-            self.time = time;
+            self.time = time.clamp(-MAX_CLOCK, MAX_CLOCK);
         }
     }
 
     /// Advances the wind clock by `dt` seconds times [`Self::time_scale`], unless paused.
-    /// A non-finite step is ignored.
+    /// A non-finite step is ignored; the clock stays within ±[`MAX_CLOCK`], so even a
+    /// `time_scale` of `f32::MAX` leaves [`Self::time`] finite.
     pub fn advance(&mut self, dt: f32) {
         let step = f64::from(dt) * f64::from(self.time_scale);
         if !self.paused && step.is_finite() {
-            self.time += step;
+            self.time = (self.time + step).clamp(-MAX_CLOCK, MAX_CLOCK);
         }
     }
 
@@ -222,6 +236,23 @@ impl WindField {
         self.time = old.time;
         self.time_scale = old.time_scale;
         self.paused = old.paused;
+    }
+
+    /// Replaces the local sources (the [`WindPlugin`](super::WindPlugin) does this every fixed
+    /// step from the [`WindSource`](super::WindSource) components).
+    pub(crate) fn set_sources(&mut self, sources: Vec<PlacedSource>) {
+        self.sources = sources;
+    }
+
+    /// How many [`WindSource`](super::WindSource)s blow into the field (as of the last fixed
+    /// step).
+    pub fn source_count(&self) -> usize {
+        self.sources.len()
+    }
+
+    /// The global field's velocity at `position` and `time`, without the local sources.
+    pub fn global_velocity_at(&self, position: Vec3, time: f32) -> Vec3 {
+        self.global(position, f64::from(time))
     }
 
     /// Wind velocity at `position` at the field's own clock.
@@ -240,7 +271,24 @@ impl WindField {
         out.extend(positions.iter().map(|&p| self.sample(p, f64::from(time))));
     }
 
+    /// The global field plus every local source.
     fn sample(&self, position: Vec3, time: f64) -> Vec3 {
+        let global = self.global(position, time);
+        if self.sources.is_empty() {
+            return global;
+        }
+        let time = if time.is_finite() { time } else { self.time };
+        let p = position.into();
+        let local = self
+            .sources
+            .iter()
+            .fold(Vec3::ZERO, |sum, s| sum + s.velocity(p, time));
+        let total = global + local;
+        if total.is_finite() { total } else { global }
+    }
+
+    /// The log-law mean wind plus turbulence (no sources).
+    fn global(&self, position: Vec3, time: f64) -> Vec3 {
         let c = &self.config;
         let height = position.y;
         // Mean speed, turbulence scale and advection speed at this height; one logarithm.

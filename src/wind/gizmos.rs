@@ -6,12 +6,15 @@ use bevy::ecs::prelude::*;
 use bevy::gizmos::AppGizmoBuilder;
 use bevy::gizmos::config::{GizmoConfig, GizmoConfigGroup};
 use bevy::gizmos::gizmos::Gizmos;
-use bevy::math::{Vec2, Vec3};
+use bevy::math::{Isometry3d, Quat, Vec2, Vec3};
 use bevy::reflect::Reflect;
+use bevy::transform::components::GlobalTransform;
 
 use super::WindField;
+use super::source::{SourceShape, WindSource};
 
-/// Draws a grid of wind arrows every frame while a [`WindField`] exists, when the
+/// Draws a grid of wind arrows every frame while a [`WindField`] exists, and the extent of
+/// every [`WindSource`] (spheres, a fan's cone, a vortex's core and rim, a blast's reach), when the
 /// [`WindGizmos`] gizmo group is enabled (off by default; part of
 /// [`WindfallDebugPlugin`](crate::WindfallDebugPlugin)).
 pub struct WindGizmosPlugin;
@@ -25,7 +28,10 @@ impl Plugin for WindGizmosPlugin {
         app.insert_gizmo_config(WindGizmos::default(), config)
             .add_systems(
                 Update,
-                draw_wind_arrows.run_if(resource_exists::<WindField>),
+                (
+                    draw_wind_arrows.run_if(resource_exists::<WindField>),
+                    draw_wind_sources,
+                ),
             );
     }
 }
@@ -109,6 +115,51 @@ fn draw_wind_arrows(wind: Res<WindField>, mut gizmos: Gizmos<WindGizmos>) {
             gizmos
                 .arrow(tail, tail + v * config.seconds_per_length, color)
                 .with_tip_length(0.25 * config.spacing);
+        }
+    }
+}
+
+fn draw_wind_sources(
+    sources: Query<(&WindSource, &GlobalTransform)>,
+    mut gizmos: Gizmos<WindGizmos>,
+) {
+    if !gizmos.config.enabled {
+        return;
+    }
+    let color = LinearRgba::rgb(0.2, 0.9, 1.0);
+    let flat = Quat::from_rotation_x(std::f32::consts::FRAC_PI_2);
+    for (source, transform) in &sources {
+        let (_, rotation, origin) = transform.to_scale_rotation_translation();
+        match source.shape {
+            SourceShape::Sphere { radius, velocity } => {
+                gizmos.sphere(Isometry3d::from_translation(origin), radius, color);
+                gizmos.arrow(origin, origin + velocity * 0.3, color);
+            }
+            SourceShape::Fan {
+                range, half_angle, ..
+            } => {
+                let forward = rotation * Vec3::NEG_Z;
+                let centre = origin + forward * (range * half_angle.cos());
+                let rim = range * half_angle.sin();
+                let facing = Quat::from_rotation_arc(Vec3::Z, forward);
+                gizmos.circle(Isometry3d::new(centre, facing), rim, color);
+                for corner in [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y] {
+                    gizmos.line(origin, centre + facing * corner * rim, color);
+                }
+            }
+            SourceShape::Vortex { radius, .. } => {
+                let level = Isometry3d::new(origin, rotation * flat);
+                gizmos.circle(level, radius, color);
+                gizmos.circle(level, 0.2 * radius, color);
+                gizmos.line(
+                    origin - rotation * Vec3::Y * radius,
+                    origin + rotation * Vec3::Y * radius,
+                    color,
+                );
+            }
+            SourceShape::Blast { radius, .. } => {
+                gizmos.sphere(Isometry3d::from_translation(origin), radius, color);
+            }
         }
     }
 }

@@ -22,9 +22,10 @@ pub mod profile;
 mod rebuild;
 mod settings;
 mod snapshot;
+mod source;
 
-pub use config::{MAX_NODES, SpatialMode, TemporalMode, WindConfig, WindError};
-pub use field::{MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, WindField};
+pub use config::{MAX_NODES, MIN_LOG_RATIO, SpatialMode, TemporalMode, WindConfig, WindError};
+pub use field::{MAX_CLOCK, MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, WindField};
 #[cfg(feature = "gizmos")]
 pub use gizmos::{WindGizmos, WindGizmosPlugin, speed_class_color};
 pub use plugin::WindPlugin;
@@ -32,3 +33,4 @@ pub use rebuild::{REBUILD_STEPS, WindRebuild, WindRebuilt};
 pub use settings::WindSettings;
 pub(crate) use settings::apply_wind_settings;
 pub use snapshot::WindSnapshot;
+pub use source::{SourceShape, WindSource};

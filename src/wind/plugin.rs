@@ -4,8 +4,10 @@ use bevy::app::{App, Plugin, RunFixedMainLoop};
 use bevy::ecs::prelude::*;
 use bevy::log::error;
 use bevy::time::Time;
+use bevy::transform::components::{GlobalTransform, Transform};
 
 use super::rebuild::land_wind_rebuild;
+use super::source::{PlacedSource, SourceShape, WindSource};
 use super::{WindConfig, WindField, WindRebuilt, WindSettings, apply_wind_settings};
 use crate::WindfallSystems;
 
@@ -49,6 +51,9 @@ impl Plugin for WindPlugin {
             .register_type::<WindSettings>()
             .register_type::<WindField>()
             .register_type::<super::WindSnapshot>()
+            .register_type::<WindSource>()
+            .register_type::<SourceShape>()
+            .add_observer(restart_source)
             .add_message::<WindRebuilt>()
             .add_systems(
                 RunFixedMainLoop,
@@ -59,6 +64,7 @@ impl Plugin for WindPlugin {
                 (
                     land_wind_rebuild,
                     advance_wind_clock.run_if(resource_exists::<WindField>),
+                    place_wind_sources.run_if(resource_exists::<WindField>),
                 )
                     .chain()
                     .in_set(WindfallSystems::Wind),
@@ -89,4 +95,61 @@ impl Plugin for WindPlugin {
 /// [`FixedUpdate`]).
 pub fn advance_wind_clock(time: Res<Time>, mut wind: ResMut<WindField>) {
     wind.advance(time.delta_secs());
+}
+
+/// What placing a source reads.
+type SourceParts = (
+    Entity,
+    &'static WindSource,
+    &'static Transform,
+    Option<&'static GlobalTransform>,
+    Has<ChildOf>,
+    Option<&'static SourceStart>,
+);
+
+/// The wind time a [`WindSource`] started at (what a blast's age counts from).
+#[derive(Component, Clone, Copy, Debug)]
+struct SourceStart(f64);
+
+/// A source inserted (again) starts again: a blast fires anew.
+fn restart_source(event: On<Insert, WindSource>, mut commands: Commands) {
+    if let Ok(mut e) = commands.get_entity(event.entity) {
+        e.remove::<SourceStart>();
+    }
+}
+
+/// Places every [`WindSource`] in the [`WindField`] for this fixed step, in entity order (so the
+/// sum is the same on every run). An unparented source is placed by its `Transform` (current
+/// even in the frame it was spawned), a parented one by its `GlobalTransform`.
+fn place_wind_sources(
+    mut commands: Commands,
+    mut wind: ResMut<WindField>,
+    sources: Query<SourceParts>,
+) {
+    let now = wind.time_seconds();
+    let mut placed: Vec<(Entity, PlacedSource)> = Vec::new();
+    for (entity, source, transform, global, parented, start) in &sources {
+        let start = match start {
+            Some(s) => s.0,
+            None => {
+                commands.entity(entity).insert(SourceStart(now));
+                now
+            }
+        };
+        if source.finished(now - start) {
+            continue;
+        }
+        let affine = match global {
+            Some(g) if parented => g.affine(),
+            _ => transform.compute_affine(),
+        };
+        if let Some(p) = PlacedSource::new(source, &affine, start) {
+            placed.push((entity, p));
+        }
+    }
+    if placed.is_empty() && wind.source_count() == 0 {
+        return;
+    }
+    placed.sort_by_key(|(entity, _)| *entity);
+    wind.set_sources(placed.into_iter().map(|(_, p)| p).collect());
 }

@@ -1,6 +1,8 @@
 //! Shared helpers of the integration tests: a headless, deterministic app and the paper's coin.
 #![allow(dead_code)] // each test file uses a different subset
 
+pub mod hostile;
+
 use std::time::Duration;
 
 use bevy::app::App;
