@@ -63,7 +63,10 @@
 //! Local wind: a [`WindSource`](wind::WindSource) component (a sphere, a fan, a vortex, a blast)
 //! adds its velocity to the field where it is, from the next fixed step on; everything that
 //! samples the field feels it (falling objects, cloth, plates, avian bodies), and a strong enough
-//! gust lifts a resting leaf again ([`LIFT_OFF_FACTOR`](freefall::LIFT_OFF_FACTOR)).
+//! gust lifts a resting leaf again ([`LIFT_OFF_FACTOR`](freefall::LIFT_OFF_FACTOR)). A
+//! [`WindShelter`](wind::WindShelter) calms the lee of a wall or the inside of a room;
+//! [`WindField::ease_to`](wind::WindField::ease_to) builds a storm up or veers the wind without a
+//! jump; [`WindConfig::beaufort`](wind::WindConfig::beaufort) gives the wind of a Beaufort force.
 //!
 //! # Falling objects
 //!

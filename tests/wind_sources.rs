@@ -146,6 +146,16 @@ fn a_blast_runs_outward_once_and_is_gone() {
     for step in 0..120 {
         app.update();
         let age = step as f32 * dt;
+        // After n steps the front is n steps out, blowing its peak right behind it.
+        let front_now = (step + 1) as f32 * dt * front;
+        if front_now > 0.2 && front_now < 0.5 * radius {
+            let at_front = wind(&app, centre + Vec3::Z * (front_now - 0.01));
+            assert!(at_front.length() > 0.95 * peak, "{front_now} m: {at_front}");
+            assert_eq!(
+                wind(&app, centre + Vec3::Z * (front_now + 0.01)),
+                Vec3::ZERO
+            );
+        }
         // The strongest point along a ray, and no inward wind anywhere on three rays.
         let mut best = (0.0f32, 0.0f32);
         for dir in [Vec3::X, Vec3::new(-1.0, 0.5, 0.3).normalize(), Vec3::NEG_Z] {
@@ -259,6 +269,13 @@ fn bad_arguments_are_named_or_clamped_never_nan() {
     assert_eq!(e(WindSource::try_blast(-5.0, 1.0, 1.0)), "peak_speed");
     assert_eq!(e(WindSource::try_blast(5.0, f32::NAN, 1.0)), "front_speed");
     assert_eq!(e(WindSource::try_blast(5.0, 1.0, -1.0)), "radius");
+    assert_eq!(e(WindSource::try_gust(f32::NAN, 1.0, 1.0, 1.0)), "strength");
+    assert_eq!(e(WindSource::try_gust(5.0, -1.0, 1.0, 1.0)), "front_speed");
+    assert_eq!(
+        e(WindSource::try_gust(5.0, 1.0, f32::INFINITY, 1.0)),
+        "width"
+    );
+    assert_eq!(e(WindSource::try_gust(5.0, 1.0, 1.0, -3.0)), "range");
     assert!(WindSource::try_fan(3.0, 0.3, 1.0).is_ok());
     // The plain constructors clamp: every hostile argument gives a finite field.
     let hostile = [
@@ -279,6 +296,7 @@ fn bad_arguments_are_named_or_clamped_never_nan() {
             world.spawn(WindSource::fan(a, b, a));
             world.spawn(WindSource::vortex(a, b).with_updraft(a));
             world.spawn(WindSource::blast(a, b, 3.0));
+            world.spawn(WindSource::gust(a, b, a, b));
         }
     }
     for _ in 0..3 {
@@ -489,4 +507,137 @@ fn a_blast_sweeps_leaves_off_the_ground_but_not_a_coin() {
         coin_before,
         "a 15 m/s blast does not lift a coin"
     );
+}
+
+#[test]
+fn a_gust_front_sweeps_downwind_once() {
+    let mut app = app_with(still());
+    // Pointed along +X (its forward), from x = 0: 6 m/s, front at 8 m/s, 3 m thick, 40 m.
+    let start = Transform::from_xyz(0.0, 1.0, 0.0).looking_to(Vec3::X, Vec3::Y);
+    app.world_mut()
+        .spawn((WindSource::gust(6.0, 8.0, 3.0, 40.0), start));
+    let probe = Vec3::new(20.0, 1.0, 2.0);
+    let dt = STEP.as_secs_f32();
+    let mut felt = Vec::new();
+    for step in 0..400 {
+        app.update();
+        let v = wind(&app, probe);
+        assert!(v.y.abs() < 1e-5 && v.z.abs() < 1e-5 && v.x >= 0.0, "{v}");
+        felt.push((step as f32 * dt, v.x));
+        // Nothing behind the start or beyond its range.
+        assert_eq!(wind(&app, Vec3::new(-1.0, 1.0, 0.0)), Vec3::ZERO);
+        assert_eq!(wind(&app, Vec3::new(41.0, 1.0, 0.0)), Vec3::ZERO);
+    }
+    let arrived = felt.iter().find(|f| f.1 > 0.0).unwrap().0;
+    let left = felt.iter().rev().find(|f| f.1 > 0.0).unwrap().0;
+    // It reaches x = 20 at 20 / 8 = 2.5 s and takes 3 / 8 s to pass.
+    assert!((arrived - 2.5).abs() < 0.05, "arrived at {arrived} s");
+    assert!(
+        (left - arrived - 3.0 / 8.0).abs() < 0.05,
+        "passed in {} s",
+        left - arrived
+    );
+    let strongest = felt.iter().map(|f| f.1).fold(0.0, f32::max);
+    // At 2 m off its centre line (of 20 m half-width) it is a little under its strength.
+    assert!(strongest > 0.9 * 6.0 && strongest <= 6.0, "{strongest}");
+    assert!(felt.last().unwrap().1 == 0.0);
+}
+
+/// A steady wind of 6 m/s along +X at 10 m (no turbulence), for the shelters.
+fn steady() -> WindConfig {
+    WindConfig {
+        reference_speed: 6.0,
+        turbulence_intensity: Some(0.0),
+        grid: [16, 16],
+        ..default()
+    }
+}
+
+#[test]
+fn a_wall_calms_its_lee_and_the_wind_recovers_downwind() {
+    use bevy_windfall::wind::WindShelter;
+    let mut app = app_with(steady());
+    // A wall 2 m high and 10 m long across the wind, its downwind face at x = 0.1.
+    app.world_mut().spawn((
+        WindShelter::wall(Vec3::new(0.1, 1.0, 5.0)),
+        Transform::from_xyz(0.0, 1.0, 0.0),
+    ));
+    let open = |app: &App, p: Vec3| app.world().resource::<WindField>().velocity(p).x;
+    let before = open(&app, Vec3::new(3.0, 1.0, 0.0));
+    app.update();
+    assert_eq!(app.world().resource::<WindField>().shelter_count(), 1);
+    // Behind the wall, below its top: calm right behind, recovering monotonically by 8 heights.
+    let mut last = 0.0;
+    for i in 1..=40 {
+        let x = 0.1 + i as f32 * 0.4;
+        let u = open(&app, Vec3::new(x, 1.0, 0.0));
+        let free = app.world().resource::<WindField>().mean_speed_at(1.0);
+        assert!(
+            u >= last - 1e-5,
+            "recovers monotonically: {last} → {u} at {x}"
+        );
+        if x <= 2.0 {
+            assert!(u < 0.5 * free, "calm at {x}: {u} of {free}");
+        }
+        if x >= 16.1 {
+            assert!((u - free).abs() < 1e-4, "recovered at {x}: {u} of {free}");
+        }
+        last = u;
+    }
+    assert!(before > 0.0);
+    // Upwind, well above the wall, and beyond its end: the open wind.
+    for p in [
+        Vec3::new(-2.0, 1.0, 0.0),
+        Vec3::new(2.0, 4.0, 0.0),
+        Vec3::new(2.0, 1.0, 8.0),
+    ] {
+        let free = app.world().resource::<WindField>().mean_speed_at(p.y);
+        assert!((open(&app, p) - free).abs() < 1e-4, "{p}");
+    }
+    // Turned with the wind along the wall, it shelters nothing a wall-height beside its end.
+    let field = app.world_mut().resource_mut::<WindField>().into_inner();
+    field.set_direction(Vec2::new(0.0, 1.0)).unwrap();
+    app.update();
+    let p = Vec3::new(3.0, 1.0, 7.0);
+    let v = app.world().resource::<WindField>().velocity(p);
+    let free = app.world().resource::<WindField>().mean_speed_at(1.0);
+    assert!((v.z - free).abs() < 1e-4, "{v}");
+}
+
+#[test]
+fn no_global_wind_indoors_but_a_fan_still_blows() {
+    use bevy_windfall::wind::WindShelter;
+    let mut app = app_with(steady());
+    app.world_mut().spawn((
+        WindShelter::indoor(Vec3::new(3.0, 1.5, 3.0)),
+        Transform::from_xyz(0.0, 1.5, 0.0),
+    ));
+    let fan = Transform::from_xyz(0.0, 1.0, 2.0).looking_to(Vec3::NEG_Z, Vec3::Y);
+    app.world_mut().spawn((WindSource::fan(3.0, 0.5, 4.0), fan));
+    app.update();
+    let field = app.world().resource::<WindField>();
+    assert_eq!(
+        field.velocity(Vec3::new(-2.0, 1.0, -2.0)),
+        Vec3::ZERO,
+        "calm room"
+    );
+    let blown = field.velocity(Vec3::new(0.0, 1.0, 1.0));
+    assert!(
+        blown.z < -2.0 && blown.x.abs() < 1e-4,
+        "the fan indoors: {blown}"
+    );
+    // Outside, a quarter of a metre past the walls, the open wind.
+    let out = field.velocity(Vec3::new(0.0, 1.0, -3.3));
+    assert!((out.x - field.mean_speed_at(1.0)).abs() < 1e-4, "{out}");
+    // Continuous through the wall's transition.
+    let mut last = 0.0;
+    for i in 0..=30 {
+        let z = -3.0 - i as f32 * 0.01;
+        let u = field.velocity(Vec3::new(0.0, 1.0, z)).x;
+        assert!(
+            u >= last && u - last < 0.2 * field.mean_speed_at(1.0),
+            "{z}: {last} → {u}"
+        );
+        last = u;
+    }
 }

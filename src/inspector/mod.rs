@@ -1,11 +1,13 @@
-//! A drop-in tuning panel (feature `egui`): the wind, a falling object, a cloth, the aero bodies
-//! and the debug drawing, edited live in any game that adds [`WindfallInspectorPlugin`].
+//! A drop-in tuning panel (feature `egui`): the wind, a falling object, a cloth, the local wind
+//! sources, the aero bodies and the debug drawing, edited live in any game that adds
+//! [`WindfallInspectorPlugin`].
 //!
 //! Everything it edits is plain data the plugins already follow: [`WindSettings`] (speed and
 //! direction at once, the turbulence rebuilt in the background once a control is let go), the
 //! [`FallingObject`] and [`Cloth`] components (a change releases or rebuilds them) and the aero
 //! bodies' coefficients. Entities with a [`Name`] are offered first.
 
+mod local;
 mod sections;
 
 use bevy::app::{App, Plugin};
@@ -19,7 +21,7 @@ use bevy_egui::{EguiContexts, EguiPlugin, EguiPrimaryContextPass, egui};
 use crate::aero::AeroBody;
 use crate::cloth::Cloth;
 use crate::freefall::{FallState, FallingObject, FallingObjectInvalid};
-use crate::wind::{WindConfig, WindRebuild, WindSettings};
+use crate::wind::{WindConfig, WindRebuild, WindSettings, WindShelter, WindSource};
 
 /// Adds the panel (and bevy_egui's plugin if it is missing). Needs a window and a camera.
 ///
@@ -93,6 +95,8 @@ struct Targets<'w, 's> {
     falling: Query<'w, 's, FallingParts>,
     cloths: Query<'w, 's, (Entity, &'static mut Cloth, Option<&'static Name>)>,
     bodies: Query<'w, 's, &'static mut AeroBody>,
+    sources: Query<'w, 's, (Entity, &'static mut WindSource, Option<&'static Name>)>,
+    shelters: Query<'w, 's, &'static WindShelter>,
     #[cfg(feature = "gizmos")]
     gizmos: Option<ResMut<'w, bevy::gizmos::config::GizmoConfigStore>>,
 }
@@ -120,6 +124,7 @@ fn show_inspector(
                 ui.collapsing("Cloth", |ui| {
                     sections::cloth(ui, &mut inspector, &mut targets)
                 });
+                ui.collapsing("Local wind", |ui| local::local_wind(ui, &mut targets));
                 ui.collapsing("Aero bodies", |ui| sections::aero(ui, &mut targets));
                 #[cfg(feature = "gizmos")]
                 ui.collapsing("Debug drawing", |ui| sections::gizmos(ui, &mut targets));

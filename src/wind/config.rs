@@ -105,6 +105,25 @@ impl Default for WindConfig {
 /// [`crate::spectrum::MAX_NODES`] = 2^26 nodes (768 MiB of samples).
 pub const MAX_NODES: usize = crate::spectrum::MAX_NODES;
 
+/// Mean wind speed at 10 m, m/s, for each Beaufort force 0–12: the middle of the WMO range of
+/// the force (force 0: calm, below 0.3 m/s; force 12: the lower bound of hurricane force,
+/// 32.7 m/s).
+pub const BEAUFORT_SPEEDS: [f32; 13] = [
+    0.1, 0.9, 2.45, 4.4, 6.7, 9.35, 12.3, 15.5, 18.95, 22.6, 26.45, 30.55, 32.7,
+];
+
+impl WindConfig {
+    /// The default wind (over scattered trees, z0 = 0.3 m) at Beaufort force `force` (clamped
+    /// to 12): [`BEAUFORT_SPEEDS`] at a reference height of 10 m, where the scale is defined.
+    pub fn beaufort(force: u8) -> Self {
+        Self {
+            reference_speed: BEAUFORT_SPEEDS[usize::from(force.min(12))],
+            reference_height: 10.0,
+            ..Self::default()
+        }
+    }
+}
+
 /// Least accepted ln(h_ref/z0): the reference height is at least e^0.1 ≈ 1.105 times the
 /// roughness length. It keeps eq. 10's u* = κU/ln(h/z0) finite and the default turbulence
 /// intensity 1/ln(h/z0) within [`super::MAX_TURBULENCE_INTENSITY`].

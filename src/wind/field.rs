@@ -6,7 +6,9 @@ use bevy::math::{Vec2, Vec3};
 use bevy::reflect::Reflect;
 
 use super::config::{SpatialMode, TemporalMode, WindConfig, WindError};
+use super::ease::Ease;
 use super::profile;
+use super::shelter::PlacedShelter;
 use super::source::PlacedSource;
 use crate::spectrum::{GridShape, SpectrumError, Synthesizer, periodic_lerp, periodic_lerp_2d};
 
@@ -76,6 +78,12 @@ pub struct WindField {
     generation: u64,
     /// The [`WindSource`](super::WindSource)s placed at the last fixed step, by entity.
     sources: Vec<PlacedSource>,
+    /// Where [`WindField::ease_to`] is taking the mean wind.
+    ease: Option<Ease>,
+    /// The [`WindShelter`](super::WindShelter)s placed at the last fixed step.
+    shelters: Vec<PlacedShelter>,
+    /// The clock before the last [`WindField::advance`]: when the step now simulated began.
+    step_start: f64,
 }
 
 /// Numbers the fields made by [`WindField::new`].
@@ -126,6 +134,9 @@ impl WindField {
             paused: false,
             generation: GENERATIONS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
             sources: Vec::new(),
+            ease: None,
+            shelters: Vec::new(),
+            step_start: 0.0,
         };
         field.derive();
         Ok(field)
@@ -182,24 +193,85 @@ impl WindField {
         profile::log_law(self.friction_velocity, self.config.roughness, height)
     }
 
-    /// Changes the mean speed at the reference height, keeping the turbulence pattern.
+    /// Changes the mean speed at the reference height at once, keeping the turbulence pattern
+    /// (and ending any [`Self::ease_to`]).
     pub fn set_reference_speed(&mut self, speed: f32) -> Result<(), WindError> {
         let mut config = self.config.clone();
         config.reference_speed = speed;
         validate_extra(&config)?;
         self.config = config;
+        self.ease = None;
         self.derive();
         Ok(())
     }
 
-    /// Changes the horizontal direction (x, z) of the mean wind, keeping the pattern.
+    /// Changes the horizontal direction (x, z) of the mean wind at once, keeping the pattern
+    /// (and ending any [`Self::ease_to`]).
     pub fn set_direction(&mut self, direction: Vec2) -> Result<(), WindError> {
         let mut config = self.config.clone();
         config.direction = direction;
         validate_extra(&config)?;
         self.config = config;
+        self.ease = None;
         self.derive();
         Ok(())
+    }
+
+    /// Eases the mean wind toward `speed` (m/s at the reference height) and `direction` (x, z)
+    /// with time constant `time_constant` (s of wind time): as the clock advances, both move the
+    /// fraction 1 − e^(−dt/τ) of the way each step (the direction turning the short way), so a
+    /// storm builds up and a wind veers without a jump; τ = 0 sets them at once. The turbulence
+    /// pattern is kept. [`Self::set_reference_speed`] or [`Self::set_direction`] end it.
+    ///
+    /// # Errors
+    /// A speed or direction [`Self::set_reference_speed`] / [`Self::set_direction`] would
+    /// refuse, or a negative or non-finite `time_constant`.
+    pub fn ease_to(
+        &mut self,
+        speed: f32,
+        direction: Vec2,
+        time_constant: f32,
+    ) -> Result<(), WindError> {
+        let mut target = self.config.clone();
+        target.reference_speed = speed;
+        target.direction = direction;
+        validate_extra(&target)?;
+        if !(time_constant.is_finite() && time_constant >= 0.0) {
+            return Err(WindError::Invalid {
+                field: "time_constant",
+                value: time_constant,
+                reason: "must be finite and ≥ 0",
+            });
+        }
+        let direction = crate::guard::unit_vec2(direction).unwrap_or(Vec2::X);
+        self.ease = Some(Ease {
+            speed,
+            direction,
+            time_constant,
+        });
+        if time_constant == 0.0 {
+            self.ease_step(0.0);
+        }
+        Ok(())
+    }
+
+    /// Where [`Self::ease_to`] is taking the mean wind: (speed, unit direction, τ).
+    pub fn easing(&self) -> Option<(f32, Vec2, f32)> {
+        self.ease.map(|e| (e.speed, e.direction, e.time_constant))
+    }
+
+    fn ease_step(&mut self, dt: f32) {
+        let Some(ease) = self.ease else {
+            return;
+        };
+        let now = Vec2::new(self.along.x, self.along.z);
+        let (speed, direction, arrived) = ease.step(self.config.reference_speed, now, dt);
+        self.config.reference_speed = speed;
+        self.config.direction = direction;
+        if arrived {
+            self.ease = None;
+        }
+        self.derive();
     }
 
     /// Wind time, s.
@@ -217,6 +289,7 @@ impl WindField {
     pub fn set_clock(&mut self, time: f64) {
         if time.is_finite() {
             self.time = time.clamp(-MAX_CLOCK, MAX_CLOCK);
+            self.step_start = self.time;
         }
     }
 
@@ -225,17 +298,21 @@ impl WindField {
     /// `time_scale` of `f32::MAX` leaves [`Self::time`] finite.
     pub fn advance(&mut self, dt: f32) {
         let step = f64::from(dt) * f64::from(self.time_scale);
+        self.step_start = self.time;
         if !self.paused && step.is_finite() {
             self.time = (self.time + step).clamp(-MAX_CLOCK, MAX_CLOCK);
+            self.ease_step(step.abs().min(f64::from(f32::MAX)) as f32);
         }
     }
 
-    /// Takes over `old`'s clock (time, time scale, pause), so a rebuilt field continues where the
-    /// old one was.
+    /// Takes over `old`'s clock (time, time scale, pause) and its [`Self::ease_to`] in progress,
+    /// so a rebuilt field continues where the old one was.
     pub fn continue_clock_of(&mut self, old: &WindField) {
         self.time = old.time;
         self.time_scale = old.time_scale;
         self.paused = old.paused;
+        self.ease = old.ease;
+        self.step_start = old.step_start;
     }
 
     /// Replaces the local sources (the [`WindPlugin`](super::WindPlugin) does this every fixed
@@ -244,15 +321,33 @@ impl WindField {
         self.sources = sources;
     }
 
+    /// Replaces the shelters (the [`WindPlugin`](super::WindPlugin) does this every fixed step
+    /// from the [`WindShelter`](super::WindShelter) components).
+    pub(crate) fn set_shelters(&mut self, shelters: Vec<PlacedShelter>) {
+        self.shelters = shelters;
+    }
+
+    /// The wind time the step now simulated began at (the clock before the last advance): a
+    /// source added before this step started then.
+    pub(crate) fn step_start(&self) -> f64 {
+        self.step_start
+    }
+
+    /// How many [`WindShelter`](super::WindShelter)s calm the field (as of the last fixed step).
+    pub fn shelter_count(&self) -> usize {
+        self.shelters.len()
+    }
+
     /// How many [`WindSource`](super::WindSource)s blow into the field (as of the last fixed
     /// step).
     pub fn source_count(&self) -> usize {
         self.sources.len()
     }
 
-    /// The global field's velocity at `position` and `time`, without the local sources.
+    /// The global field's velocity at `position` and `time` (sheltered), without the local
+    /// sources.
     pub fn global_velocity_at(&self, position: Vec3, time: f32) -> Vec3 {
-        self.global(position, f64::from(time))
+        self.sheltered(position, f64::from(time))
     }
 
     /// Wind velocity at `position` at the field's own clock.
@@ -271,9 +366,24 @@ impl WindField {
         out.extend(positions.iter().map(|&p| self.sample(p, f64::from(time))));
     }
 
-    /// The global field plus every local source.
-    fn sample(&self, position: Vec3, time: f64) -> Vec3 {
+    /// The global field, calmed by every shelter.
+    fn sheltered(&self, position: Vec3, time: f64) -> Vec3 {
         let global = self.global(position, time);
+        if self.shelters.is_empty() {
+            return global;
+        }
+        let p = position.into();
+        let share: f32 = self
+            .shelters
+            .iter()
+            .map(|s| s.factor(p, self.along))
+            .product();
+        global * share
+    }
+
+    /// The global field (sheltered) plus every local source.
+    fn sample(&self, position: Vec3, time: f64) -> Vec3 {
+        let global = self.sheltered(position, time);
         if self.sources.is_empty() {
             return global;
         }

@@ -160,6 +160,11 @@ fn draw_wind_sources(
             SourceShape::Blast { radius, .. } => {
                 gizmos.sphere(Isometry3d::from_translation(origin), radius, color);
             }
+            SourceShape::Gust { range, .. } => {
+                // Its path: from the entity forward over its range.
+                let forward = rotation * Vec3::NEG_Z;
+                gizmos.arrow(origin, origin + forward * range, color);
+            }
         }
     }
 }

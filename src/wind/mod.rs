@@ -14,6 +14,7 @@
 //! [`WindPlugin`] inserts the field and advances its clock on the fixed timestep.
 
 mod config;
+mod ease;
 mod field;
 #[cfg(feature = "gizmos")]
 mod gizmos;
@@ -21,10 +22,13 @@ mod plugin;
 pub mod profile;
 mod rebuild;
 mod settings;
+mod shelter;
 mod snapshot;
 mod source;
 
-pub use config::{MAX_NODES, MIN_LOG_RATIO, SpatialMode, TemporalMode, WindConfig, WindError};
+pub use config::{
+    BEAUFORT_SPEEDS, MAX_NODES, MIN_LOG_RATIO, SpatialMode, TemporalMode, WindConfig, WindError,
+};
 pub use field::{MAX_CLOCK, MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, WindField};
 #[cfg(feature = "gizmos")]
 pub use gizmos::{WindGizmos, WindGizmosPlugin, speed_class_color};
@@ -32,5 +36,6 @@ pub use plugin::WindPlugin;
 pub use rebuild::{REBUILD_STEPS, WindRebuild, WindRebuilt};
 pub use settings::WindSettings;
 pub(crate) use settings::apply_wind_settings;
+pub use shelter::{ShelterKind, WindShelter};
 pub use snapshot::WindSnapshot;
 pub use source::{SourceShape, WindSource};

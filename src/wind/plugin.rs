@@ -7,6 +7,7 @@ use bevy::time::Time;
 use bevy::transform::components::{GlobalTransform, Transform};
 
 use super::rebuild::land_wind_rebuild;
+use super::shelter::{PlacedShelter, ShelterKind, WindShelter};
 use super::source::{PlacedSource, SourceShape, WindSource};
 use super::{WindConfig, WindField, WindRebuilt, WindSettings, apply_wind_settings};
 use crate::WindfallSystems;
@@ -53,6 +54,8 @@ impl Plugin for WindPlugin {
             .register_type::<super::WindSnapshot>()
             .register_type::<WindSource>()
             .register_type::<SourceShape>()
+            .register_type::<WindShelter>()
+            .register_type::<ShelterKind>()
             .add_observer(restart_source)
             .add_message::<WindRebuilt>()
             .add_systems(
@@ -97,6 +100,15 @@ pub fn advance_wind_clock(time: Res<Time>, mut wind: ResMut<WindField>) {
     wind.advance(time.delta_secs());
 }
 
+/// What placing a shelter reads.
+type ShelterParts = (
+    Entity,
+    &'static WindShelter,
+    &'static Transform,
+    Option<&'static GlobalTransform>,
+    Has<ChildOf>,
+);
+
 /// What placing a source reads.
 type SourceParts = (
     Entity,
@@ -118,22 +130,39 @@ fn restart_source(event: On<Insert, WindSource>, mut commands: Commands) {
     }
 }
 
-/// Places every [`WindSource`] in the [`WindField`] for this fixed step, in entity order (so the
-/// sum is the same on every run). An unparented source is placed by its `Transform` (current
+/// Places every [`WindSource`] and [`WindShelter`] in the [`WindField`] for this fixed step, in
+/// entity order (so the sum is the same on every run). An unparented source is placed by its `Transform` (current
 /// even in the frame it was spawned), a parented one by its `GlobalTransform`.
 fn place_wind_sources(
     mut commands: Commands,
     mut wind: ResMut<WindField>,
     sources: Query<SourceParts>,
+    shelters: Query<ShelterParts>,
 ) {
+    let mut sheltering: Vec<(Entity, PlacedShelter)> = shelters
+        .iter()
+        .filter_map(|(entity, shelter, transform, global, parented)| {
+            let affine = match global {
+                Some(g) if parented => g.affine(),
+                _ => transform.compute_affine(),
+            };
+            PlacedShelter::new(shelter, &affine).map(|p| (entity, p))
+        })
+        .collect();
+    if !(sheltering.is_empty() && wind.shelter_count() == 0) {
+        sheltering.sort_by_key(|(entity, _)| *entity);
+        wind.set_shelters(sheltering.into_iter().map(|(_, p)| p).collect());
+    }
     let now = wind.time_seconds();
+    // A source added before this step has blown since the step began.
+    let started = wind.step_start();
     let mut placed: Vec<(Entity, PlacedSource)> = Vec::new();
     for (entity, source, transform, global, parented, start) in &sources {
         let start = match start {
             Some(s) => s.0,
             None => {
-                commands.entity(entity).insert(SourceStart(now));
-                now
+                commands.entity(entity).insert(SourceStart(started));
+                started
             }
         };
         if source.finished(now - start) {

@@ -159,7 +159,6 @@ pub fn land_wind_rebuild(
     rebuild.task = None;
     let mut field = field;
     if let Some(old) = old.as_deref() {
-        field.continue_clock_of(old);
         // Speed and direction changed while it built (directly or through the settings).
         let (speed, direction) = match settings.as_deref() {
             Some(s) => (s.reference_speed, s.direction),
@@ -171,6 +170,7 @@ pub fn land_wind_rebuild(
         {
             warn!("WindRebuild: {e}; the rebuilt field keeps its own speed and direction");
         }
+        field.continue_clock_of(old);
     }
     rebuilt.write(WindRebuilt {
         config: field.config().clone(),

@@ -44,7 +44,7 @@ pub enum SourceShape {
         updraft: f32,
     },
     /// A one-shot outward pulse whose front runs outward at `front_speed` from when the source
-    /// starts (the first fixed step after it is added).
+    /// starts (when it is added: the start of the next fixed step).
     Blast {
         /// Outward speed at the front, m/s (≥ 0).
         peak_speed: f32,
@@ -52,6 +52,18 @@ pub enum SourceShape {
         front_speed: f32,
         /// Nothing beyond this distance; the blast is over once its front has passed it, m.
         radius: f32,
+    },
+    /// A gust front: a slab across the entity's forward direction (local −Z) travelling forward
+    /// from the entity, adding wind along that direction as it passes.
+    Gust {
+        /// Wind it adds along forward, m/s.
+        strength: f32,
+        /// Speed of the front, m/s.
+        front_speed: f32,
+        /// Thickness of the slab along the travel, m.
+        width: f32,
+        /// How far it travels and how wide it is across, m.
+        range: f32,
     },
 }
 
@@ -65,7 +77,8 @@ pub enum SourceShape {
 /// angle is clamped to its range, so a bad argument gives a source that blows nothing rather than
 /// NaN. The `try_` constructors return a [`WindError`] naming the argument instead.
 ///
-/// A blast is one-shot: it starts at the first fixed step after it is added and is inert once
+/// A blast or a gust is one-shot: it starts when it is added (its age counts from the start of
+/// the next fixed step, so after n steps it is n steps old) and is inert once
 /// its front has passed `radius` ([`WindSource::finished`]); the entity stays (despawn it, or
 /// insert the component again to fire it again).
 ///
@@ -205,16 +218,47 @@ impl WindSource {
         self
     }
 
-    /// A one-shot outward pulse: it starts at the first fixed step after the component is added,
-    /// its front runs outward at `front_speed` m/s, blowing outward (never inward) at up to
-    /// `peak_speed` m/s in a band a fifth of `radius` wide behind the front (the speed fading over
-    /// the outer half of `radius`), and it is gone once the band has passed `radius` m.
+    /// A one-shot outward pulse: it starts when the component is added (at the start of the next
+    /// fixed step), its front runs outward at `front_speed` m/s, blowing outward (never inward)
+    /// at `peak_speed` m/s right at the front (a shock) and easing to nothing a fifth of `radius`
+    /// behind it, the speed fading over the outer half of `radius`; it is gone once that band
+    /// has passed `radius` m.
     pub fn blast(peak_speed: f32, front_speed: f32, radius: f32) -> Self {
         Self::new(SourceShape::Blast {
             peak_speed: size(peak_speed),
             front_speed: size(front_speed),
             radius: size(radius),
         })
+    }
+
+    /// A gust front sweeping across a field: a slab `width` m thick and `range` m across,
+    /// square to the entity's forward direction (local −Z, so point the entity downwind), that
+    /// starts at the entity when the component is added (the start of the next fixed step) and travels
+    /// forward at `front_speed` m/s for `range` m, adding up to `strength` m/s along forward as
+    /// it passes (fading across its thickness and toward its sides). Like a blast it is one-shot
+    /// and then inert.
+    pub fn gust(strength: f32, front_speed: f32, width: f32, range: f32) -> Self {
+        Self::new(SourceShape::Gust {
+            strength: finite(strength),
+            front_speed: size(front_speed),
+            width: size(width),
+            range: size(range),
+        })
+    }
+
+    /// [`Self::gust`], refusing a non-finite `strength` or negative or non-finite sizes.
+    pub fn try_gust(
+        strength: f32,
+        front_speed: f32,
+        width: f32,
+        range: f32,
+    ) -> Result<Self, WindError> {
+        let reason = "must be finite and ≥ 0";
+        check("strength", strength, true, "must be finite")?;
+        check("front_speed", front_speed, front_speed >= 0.0, reason)?;
+        check("width", width, width >= 0.0, reason)?;
+        check("range", range, range >= 0.0, reason)?;
+        Ok(Self::gust(strength, front_speed, width, range))
     }
 
     /// [`Self::blast`], refusing negative or non-finite arguments.
@@ -233,11 +277,16 @@ impl WindSource {
             | SourceShape::Vortex { radius, .. }
             | SourceShape::Blast { radius, .. } => radius,
             SourceShape::Fan { range, .. } => range,
+            // The far corners of the slab at the end of its travel.
+            SourceShape::Gust { width, range, .. } => {
+                (range + width).hypot(range * std::f32::consts::FRAC_1_SQRT_2)
+            }
         }
     }
 
-    /// True for a blast whose front (and the band behind it) has passed its radius `age` seconds
-    /// after it started; a blast that never moves (zero front speed) is never finished.
+    /// True for a blast whose front (and the band behind it) has passed its radius, or a gust
+    /// that has crossed its range, `age` seconds after it started; one that never moves (zero
+    /// front speed) is never finished.
     pub fn finished(&self, age: f64) -> bool {
         match self.shape {
             SourceShape::Blast {
@@ -245,6 +294,12 @@ impl WindSource {
                 radius,
                 ..
             } => front_speed > 0.0 && age * f64::from(front_speed) > f64::from(radius) * 1.2,
+            SourceShape::Gust {
+                front_speed,
+                width,
+                range,
+                ..
+            } => front_speed > 0.0 && age * f64::from(front_speed) > f64::from(range + width),
             _ => false,
         }
     }
@@ -370,13 +425,34 @@ impl PlacedSource {
                 }
                 let front = (age * f64::from(front_speed)) as f32;
                 let width = 0.2 * radius;
-                // A band behind the front, steep at the front and easing behind it.
+                // A shock: the full speed at the front, easing to nothing a band behind it.
                 let behind = front - r;
                 if behind < 0.0 || behind > width {
                     return Vec3::ZERO;
                 }
-                let s = 2.0 * behind / width - 1.0;
+                let s = behind / width.max(f32::MIN_POSITIVE);
                 d / r * (peak_speed * fade(s) * plateau(r, 0.5 * radius, radius))
+            }
+            SourceShape::Gust {
+                strength,
+                front_speed,
+                width,
+                range,
+            } => {
+                let age = time - self.start;
+                let local = self.to_local * d;
+                let along = -local.z;
+                if age < 0.0 || along < 0.0 || along > range {
+                    return Vec3::ZERO;
+                }
+                let front = (age * f64::from(front_speed)) as f32;
+                let behind = front - along;
+                if !(0.0..=width).contains(&behind) {
+                    return Vec3::ZERO;
+                }
+                let s = 2.0 * behind / width.max(f32::MIN_POSITIVE) - 1.0;
+                let across = local.x.hypot(local.y) / (0.5 * range);
+                self.to_world * Vec3::NEG_Z * (strength * fade(s) * fade(across))
             }
         }
     }
