@@ -36,6 +36,7 @@ mod plugin;
 mod presets;
 mod random;
 mod regime;
+mod release;
 mod tilt;
 
 pub use database::{
@@ -47,9 +48,7 @@ pub use gizmos::{FallGizmos, FallGizmosPlugin, FallTrail, motion_color};
 pub use markov::{BoundedChain, CHAIN_STEP, MarkovChain, MarkovError, motion_class_count};
 pub use model::FallModel;
 pub use motion::{CHAOTIC_MIN_TIME, FallScales, Glide, Piece, STROUHAL, SwingChoice};
-pub use path::{
-    FallPath, FallRelease, LIFT_OFF_FACTOR, MAX_RELEASE_SPEED, MAX_STEP, StepOutcome, WindTilt,
-};
+pub use path::{FallPath, StepOutcome, WindTilt};
 pub use plugin::{
     FallState, FallingObject, FallingObjectInvalid, FreeFallPlugin, FreeFallSettings, Landed,
 };
@@ -59,3 +58,4 @@ pub use regime::{
     Fluid, FreeFallError, MAX_DENSITY_RATIO, MAX_SIZE, MIN_SIZE, MIN_VISCOSITY, PHASE_DIAGRAM,
     PhaseRegion, PrimitiveMotion, Regime, Shape, classify, regime,
 };
+pub use release::{FallRelease, LIFT_OFF_FACTOR, MAX_RELEASE_SPEED, MAX_STEP};

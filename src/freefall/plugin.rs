@@ -14,8 +14,9 @@ use bevy::transform::components::Transform;
 use super::markov::MarkovChain;
 use super::model::FallModel;
 use super::motion::{FallScales, STROUHAL};
-use super::path::{FallPath, FallRelease, StepOutcome, WindTilt};
+use super::path::{FallPath, StepOutcome, WindTilt};
 use super::regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape, regime};
+use super::release::FallRelease;
 use crate::WindfallSystems;
 use crate::wind::WindField;
 

@@ -3,6 +3,7 @@
 use bevy::app::{App, Plugin, RunFixedMainLoop};
 use bevy::ecs::prelude::*;
 use bevy::log::error;
+use bevy::math::Affine3A;
 use bevy::time::Time;
 use bevy::transform::components::{GlobalTransform, Transform};
 
@@ -100,22 +101,38 @@ pub fn advance_wind_clock(time: Res<Time>, mut wind: ResMut<WindField>) {
     wind.advance(time.delta_secs());
 }
 
-/// What placing a shelter reads.
-type ShelterParts = (
-    Entity,
-    &'static WindShelter,
+/// Where a source or shelter is: its `Transform`, its `GlobalTransform`, whether it has a parent.
+type Placement = (
     &'static Transform,
     Option<&'static GlobalTransform>,
     Has<ChildOf>,
 );
 
+/// The world placement of an entity: an unparented one by its `Transform` (current even in the
+/// frame it was spawned), a parented one by its `GlobalTransform` (propagated last frame).
+fn world_affine(
+    (transform, global, parented): (&Transform, Option<&GlobalTransform>, bool),
+) -> Affine3A {
+    match global {
+        Some(g) if parented => g.affine(),
+        _ => transform.compute_affine(),
+    }
+}
+
+/// The items in entity order, so sums over them are the same on every run.
+fn in_entity_order<T>(mut items: Vec<(Entity, T)>) -> Vec<T> {
+    items.sort_by_key(|(entity, _)| *entity);
+    items.into_iter().map(|(_, t)| t).collect()
+}
+
+/// What placing a shelter reads.
+type ShelterParts = (Entity, &'static WindShelter, Placement);
+
 /// What placing a source reads.
 type SourceParts = (
     Entity,
     &'static WindSource,
-    &'static Transform,
-    Option<&'static GlobalTransform>,
-    Has<ChildOf>,
+    Placement,
     Option<&'static SourceStart>,
 );
 
@@ -131,33 +148,27 @@ fn restart_source(event: On<Insert, WindSource>, mut commands: Commands) {
 }
 
 /// Places every [`WindSource`] and [`WindShelter`] in the [`WindField`] for this fixed step, in
-/// entity order (so the sum is the same on every run). An unparented source is placed by its `Transform` (current
-/// even in the frame it was spawned), a parented one by its `GlobalTransform`.
+/// entity order (so the sum is the same on every run), each by [`world_affine`].
 fn place_wind_sources(
     mut commands: Commands,
     mut wind: ResMut<WindField>,
     sources: Query<SourceParts>,
     shelters: Query<ShelterParts>,
 ) {
-    let mut sheltering: Vec<(Entity, PlacedShelter)> = shelters
+    let sheltering: Vec<(Entity, PlacedShelter)> = shelters
         .iter()
-        .filter_map(|(entity, shelter, transform, global, parented)| {
-            let affine = match global {
-                Some(g) if parented => g.affine(),
-                _ => transform.compute_affine(),
-            };
-            PlacedShelter::new(shelter, &affine).map(|p| (entity, p))
+        .filter_map(|(entity, shelter, place)| {
+            PlacedShelter::new(shelter, &world_affine(place)).map(|p| (entity, p))
         })
         .collect();
     if !(sheltering.is_empty() && wind.shelter_count() == 0) {
-        sheltering.sort_by_key(|(entity, _)| *entity);
-        wind.set_shelters(sheltering.into_iter().map(|(_, p)| p).collect());
+        wind.set_shelters(in_entity_order(sheltering));
     }
     let now = wind.time_seconds();
     // A source added before this step has blown since the step began.
     let started = wind.step_start();
     let mut placed: Vec<(Entity, PlacedSource)> = Vec::new();
-    for (entity, source, transform, global, parented, start) in &sources {
+    for (entity, source, place, start) in &sources {
         let start = match start {
             Some(s) => s.0,
             None => {
@@ -168,17 +179,12 @@ fn place_wind_sources(
         if source.finished(now - start) {
             continue;
         }
-        let affine = match global {
-            Some(g) if parented => g.affine(),
-            _ => transform.compute_affine(),
-        };
-        if let Some(p) = PlacedSource::new(source, &affine, start) {
+        if let Some(p) = PlacedSource::new(source, &world_affine(place), start) {
             placed.push((entity, p));
         }
     }
     if placed.is_empty() && wind.source_count() == 0 {
         return;
     }
-    placed.sort_by_key(|(entity, _)| *entity);
-    wind.set_sources(placed.into_iter().map(|(_, p)| p).collect());
+    wind.set_sources(in_entity_order(placed));
 }
