@@ -68,6 +68,11 @@
 //! [`WindField::ease_to`](wind::WindField::ease_to) builds a storm up or veers the wind without a
 //! jump; [`WindConfig::beaufort`](wind::WindConfig::beaufort) gives the wind of a Beaufort force.
 //!
+//! On the GPU (feature `render`): `gpu::WindGpuPlugin` uploads the field, and the WGSL module
+//! `bevy_windfall::wind` samples it exactly as [`WindField::velocity_at`](wind::WindField::velocity_at)
+//! does (sources and shelters included), so grass and foliage (`gpu::WindSway`, a material
+//! extension) sway in the same gusts that carry the leaves.
+//!
 //! # Falling objects
 //!
 //! [`FallingObject`](freefall::FallingObject) (with [`FallPreset`](freefall::FallPreset)s for
@@ -168,6 +173,7 @@
 //! | `egui` | `inspector::WindfallInspectorPlugin`, a tuning panel (bevy_egui 0.42) |
 //! | `serde` | `Serialize`/`Deserialize` for the wind settings and [`WindSnapshot`](wind::WindSnapshot) |
 //! | `avian` | `AvianAero` and `AvianAeroPlugin` for avian3d 0.7 |
+//! | `render` | `gpu::WindGpuPlugin`: the wind on the GPU, the WGSL module `bevy_windfall::wind`, the `WindSway` material |
 //! | `example_scenes` | what the windowed examples need (renderer, window, UI) |
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
@@ -188,6 +194,8 @@ use bevy::reflect::std_traits::ReflectDefault;
 pub mod aero;
 pub mod cloth;
 pub mod freefall;
+#[cfg(feature = "render")]
+pub mod gpu;
 mod guard;
 #[cfg(feature = "egui")]
 pub mod inspector;

@@ -18,6 +18,7 @@ use bevy_windfall::freefall::{
 };
 use bevy_windfall::prelude::*;
 use bevy_windfall::spectrum::try_fbm;
+use bevy_windfall::wind::Pulse;
 use common::hostile::{HOSTILE, TILT, case, finite, report};
 use common::paper_coin;
 
@@ -29,7 +30,7 @@ fn wind_fields_are_refused_by_name_or_blow_as_set() {
         grid: [16, 16],
         ..default()
     };
-    let setters: [(&str, &[&str], WindSetter); 9] = [
+    let setters: [(&str, &[&str], WindSetter); 11] = [
         ("reference_speed", &["reference_speed"], |c, v| {
             c.reference_speed = v
         }),
@@ -50,6 +51,12 @@ fn wind_fields_are_refused_by_name_or_blow_as_set() {
         }),
         ("direction", &["direction"], |c, v| {
             c.direction = Vec2::new(v, -v)
+        }),
+        ("pulse.magnitude", &["pulse.magnitude"], |c, v| {
+            c.pulse = Pulse::new(v, 1.0)
+        }),
+        ("pulse.frequency", &["pulse.frequency"], |c, v| {
+            c.pulse = Pulse::new(0.5, v)
         }),
         ("temporal.period", &["temporal.period"], |c, v| {
             c.temporal = TemporalMode::Evolving {

@@ -8,9 +8,10 @@ use std::collections::HashMap;
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
-/// The screenshots CI takes: the showcase's four scenes (and its banner and curtain), the wind
-/// and aero scenes.
-const EXPECTED: [&str; 8] = [
+/// The screenshots CI takes: the showcase's four scenes (and its banner and curtain, and the
+/// leaves scene's meadow of GPU-swayed grass), the wind and aero scenes.
+const EXPECTED: [&str; 9] = [
+    "meadow.png",
     "showcase_leaves.png",
     "showcase_coin.png",
     "showcase_flag.png",
@@ -113,6 +114,34 @@ fn blank_reason(frame: &Frame) -> Option<String> {
     None
 }
 
+/// The grass of the meadow view: the bottom third of the left half (clear of the panel) is mostly
+/// green and full of blades, i.e. fine detail between neighbouring pixels (mean |Δ luminance|),
+/// where a bare ground plane would be smooth. Returns (green share, detail).
+fn grass_measures(frame: &Frame) -> (f64, f64) {
+    let (w, h) = (frame.width, frame.height);
+    let (mut green, mut detail, mut n) = (0usize, 0.0f64, 0usize);
+    let lum = |p: &[u8; 3]| p.iter().map(|&c| f64::from(c)).sum::<f64>() / 3.0;
+    for y in (2 * h / 3)..h {
+        for x in 0..(w / 2 - 1) {
+            let p = &frame.rgb[y * w + x];
+            if p[1] > p[0] && p[1] > p[2] {
+                green += 1;
+            }
+            detail += (lum(p) - lum(&frame.rgb[y * w + x + 1])).abs();
+            n += 1;
+        }
+    }
+    (green as f64 / n as f64, detail / n as f64)
+}
+
+/// Why the meadow shows no grass, if it does not.
+fn grass_reason(frame: &Frame) -> Option<String> {
+    let (green, detail) = grass_measures(frame);
+    (green < 0.5 || detail < 8.0).then(|| {
+        format!("no grass blades: {green:.2} green, mean |Δ luminance| {detail:.1} (≥ 0.5, ≥ 8)")
+    })
+}
+
 /// A synthetic 320 × 180 frame: `f(x, y)` per pixel.
 fn synthetic(f: impl Fn(usize, usize) -> [u8; 3]) -> Frame {
     let (width, height) = (320, 180);
@@ -160,6 +189,14 @@ fn the_checker_rejects_blank_frames_and_accepts_a_scene() {
     // Only sky.
     let sky = synthetic(|_, _| [150, 190, 220]);
     assert!(blank_reason(&sky).unwrap().contains("one colour"));
+    // A smooth green ground is no grass; thin light and dark blades are.
+    let ground = synthetic(|x, _| [90, 130 + (x / 40) as u8, 70]);
+    assert!(grass_reason(&ground).is_some());
+    let blades = synthetic(|x, y| {
+        let shade = ((x * 7 + y * 3) % 5) as u8 * 12;
+        [60 + shade, 110 + shade, 40]
+    });
+    assert_eq!(grass_reason(&blades), None);
 }
 
 #[test]
@@ -174,6 +211,13 @@ fn every_example_screenshot_shows_its_scene() {
             Err(e) => failures.push(format!("{name}: {e}")),
             Ok(frame) => {
                 if let Some(reason) = blank_reason(&frame) {
+                    failures.push(format!("{name}: {reason}"));
+                }
+                let (green, detail) = grass_measures(&frame);
+                println!("{name}: grass measures {green:.2} green, detail {detail:.1}");
+                if name == "meadow.png"
+                    && let Some(reason) = grass_reason(&frame)
+                {
                     failures.push(format!("{name}: {reason}"));
                 }
             }

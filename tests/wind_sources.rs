@@ -542,3 +542,42 @@ fn a_gust_front_sweeps_downwind_once() {
     assert!(strongest > 0.9 * 6.0 && strongest <= 6.0, "{strongest}");
     assert!(felt.last().unwrap().1 == 0.0);
 }
+
+#[test]
+fn a_pulsing_source_swells_from_when_it_starts() {
+    let mut app = app_with(still());
+    let v = Vec3::new(6.0, 0.0, 0.0);
+    // ±50 % once every 60 steps, so a quarter period is 15 steps.
+    let dt = STEP.as_secs_f32();
+    let rate = 2.0 * std::f32::consts::PI / (60.0 * dt); // rad/s
+    app.world_mut().spawn((
+        WindSource::sphere(4.0, v).with_pulse(0.5, 1.0 / (60.0 * dt)),
+        Transform::default(),
+    ));
+    let mut speeds = Vec::new();
+    for _ in 0..64 {
+        app.update();
+        speeds.push(wind(&app, Vec3::ZERO).x);
+    }
+    // Full strength when it starts (speeds[k] is k + 1 steps in), the peak a quarter period
+    // later, the trough at three quarters.
+    assert!(
+        (speeds[0] - 6.0).abs() <= 3.0 * rate * dt * 1.01,
+        "{}",
+        speeds[0]
+    );
+    let (peak, trough) = (speeds[14], speeds[44]);
+    assert!((peak - 9.0).abs() < 0.02, "{peak}");
+    assert!((trough - 3.0).abs() < 0.02, "{trough}");
+    let largest = speeds.iter().cloned().fold(0.0, f32::max);
+    assert!((largest - 9.0).abs() < 0.01);
+    // Smooth: no step changes it by more than its largest rate, 3 m/s × ω × dt.
+    for w in speeds.windows(2) {
+        assert!((w[1] - w[0]).abs() <= 3.0 * rate * dt * 1.01);
+    }
+    // Out-of-range pulses are clamped, never NaN.
+    let wild = WindSource::sphere(1.0, v).with_pulse(f32::NAN, f32::INFINITY);
+    assert!(!wild.pulse.is_active());
+    let clamped = WindSource::sphere(1.0, v).with_pulse(7.0, 1e9);
+    assert!(clamped.pulse.validate().is_ok());
+}

@@ -6,6 +6,7 @@
 use bevy::prelude::*;
 use bevy_windfall::aero::{AeroState, PlateState};
 use bevy_windfall::freefall::{FallPreset, FallRng, PrimitiveMotion};
+use bevy_windfall::gpu::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::WindSource;
 
@@ -20,6 +21,7 @@ const REST: f32 = 2.0;
 
 pub fn plugin(app: &mut App) {
     app.insert_resource(Spawner(Canopy(FallRng::new(99))))
+        .init_resource::<View>()
         .add_systems(OnEnter(Scene::Leaves), setup)
         .add_systems(
             Update,
@@ -27,7 +29,9 @@ pub fn plugin(app: &mut App) {
                 rest_and_release,
                 respawn_physical,
                 wander,
+                gust_fronts,
                 blast_on_key,
+                switch_view,
                 show_info,
             )
                 .run_if(in_state(Scene::Leaves)),
@@ -48,9 +52,68 @@ fn devil_at(t: f32) -> Vec3 {
     )
 }
 
+/// A gust front that sweeps across the meadow downwind every [`GUST_EVERY`] seconds: the
+/// grass bends as it passes, and the leaves in it are carried along.
+#[derive(Component)]
+struct GustFront;
+
+const GUST_EVERY: f32 = 9.0;
+
+fn gust_fronts(
+    mut commands: Commands,
+    gusts: Query<Entity, With<GustFront>>,
+    wind: Res<WindField>,
+    time: Res<Time>,
+    mut next: Local<f32>,
+) {
+    if time.elapsed_secs() < *next {
+        return;
+    }
+    *next = time.elapsed_secs() + GUST_EVERY;
+    // From 14 m upwind of the tree, along the mean wind; inserting the component again fires it
+    // again.
+    let downwind = wind.direction();
+    let place = Transform::from_translation(CANOPY.with_y(0.0) - downwind * 14.0)
+        .looking_to(downwind, Vec3::Y);
+    let gust = WindSource::gust(4.0, 5.0, 4.0, 30.0);
+    match gusts.single() {
+        Ok(entity) => {
+            commands.entity(entity).insert((gust, place));
+        }
+        Err(_) => {
+            commands.spawn((gust, place, GustFront, DespawnOnExit(Scene::Leaves)));
+        }
+    }
+}
+
 fn wander(mut devil: Query<&mut Transform, With<DustDevil>>, time: Res<Time>) {
     for mut t in &mut devil {
         t.translation = devil_at(time.elapsed_secs());
+    }
+}
+
+/// The camera's places (eye, target): beside the trunk looking up through the falling leaves,
+/// and a view over the meadow round the tree, where the dust devil and a blast move the leaves
+/// on the ground.
+const VIEWS: [(Vec3, Vec3); 2] = [
+    (Vec3::new(4.6, 1.4, 3.0), Vec3::new(2.2, 2.6, -0.6)),
+    (Vec3::new(10.0, 3.2, 11.0), Vec3::new(1.0, 3.4, -0.5)),
+];
+
+/// Which of [`VIEWS`] the camera is at.
+#[derive(Resource, Default)]
+struct View(usize);
+
+/// C: the other view.
+fn switch_view(
+    keys: Res<ButtonInput<KeyCode>>,
+    mut camera: Single<&mut Transform, With<Camera3d>>,
+    mut view: ResMut<View>,
+) {
+    if keys.just_pressed(KeyCode::KeyC) {
+        view.0 = (view.0 + 1) % VIEWS.len();
+        let (eye, target) = VIEWS[view.0];
+        place_camera(&mut camera, eye, target);
     }
 }
 
@@ -77,6 +140,20 @@ fn blast_on_key(
     for (entity, mut blast) in &mut blasts {
         if blast.0.tick(time.delta()).is_finished() {
             commands.entity(entity).despawn();
+        }
+    }
+}
+
+/// A material that sways in the wind.
+trait IntoSway {
+    fn into_sway(self, gpu: &WindGpuBuffers, settings: SwaySettings) -> WindSwayMaterial;
+}
+
+impl IntoSway for StandardMaterial {
+    fn into_sway(self, gpu: &WindGpuBuffers, settings: SwaySettings) -> WindSwayMaterial {
+        WindSwayMaterial {
+            base: self,
+            extension: WindSway::new(gpu, settings),
         }
     }
 }
@@ -146,14 +223,21 @@ fn setup(
     mut camera: Single<&mut Transform, With<Camera3d>>,
     mut wind: ResMut<WindField>,
     mut settings: ResMut<FreeFallSettings>,
+    mut swaying: ResMut<Assets<WindSwayMaterial>>,
+    gpu: Res<WindGpuBuffers>,
+    args: Res<common::ExampleArgs>,
+    mut view: ResMut<View>,
 ) {
     let here = DespawnOnExit(Scene::Leaves);
     // Beside the tree, downwind of the trunk, looking up through the falling leaves.
-    place_camera(
-        &mut camera,
-        Vec3::new(4.6, 1.4, 3.0),
-        Vec3::new(2.2, 2.6, -0.6),
+    // `--view meadow` starts over the meadow.
+    view.0 = usize::from(
+        args.rest
+            .windows(2)
+            .any(|w| w[0] == "--view" && w[1] == "meadow"),
     );
+    let (eye, target) = VIEWS[view.0];
+    place_camera(&mut camera, eye, target);
     let _ = wind.set_reference_speed(2.0);
     // Just above the grass plane, so resting leaves do not flicker into it.
     settings.ground_height = 0.005;
@@ -170,11 +254,16 @@ fn setup(
         Transform::from_xyz(CANOPY.x, 2.5, CANOPY.z),
         here.clone(),
     ));
-    let crown = materials.add(StandardMaterial {
-        base_color: Color::srgb(0.72, 0.42, 0.12),
-        perceptual_roughness: 0.9,
-        ..default()
-    });
+    // The crown sways in the GPU wind (each ball bends from its bottom up), and 120 000 blades
+    // of grass round the tree bend in the same gusts and in the dust devil's swirl.
+    let crown = |radius: f32| {
+        StandardMaterial {
+            base_color: Color::srgb(0.72, 0.42, 0.12),
+            perceptual_roughness: 0.9,
+            ..default()
+        }
+        .into_sway(&gpu, SwaySettings::crown(-radius, 2.0 * radius))
+    };
     for (offset, radius) in [
         (Vec3::new(0.0, 1.4, 0.0), 1.8),
         (Vec3::new(1.2, 0.9, 0.4), 1.3),
@@ -183,11 +272,20 @@ fn setup(
     ] {
         commands.spawn((
             Mesh3d(meshes.add(Sphere::new(radius))),
-            MeshMaterial3d(crown.clone()),
+            MeshMaterial3d(swaying.add(crown(radius))),
             Transform::from_translation(CANOPY + offset),
             here.clone(),
         ));
     }
+    let grass = super::grass::spawn(
+        &mut commands,
+        &mut meshes,
+        &mut swaying,
+        &gpu,
+        Vec2::new(-7.0, -9.0),
+        Vec2::new(11.0, 9.0),
+    );
+    commands.entity(grass).insert(here.clone());
     // One mesh per kind, at its preset's size; three colours per kind.
     let kinds: Vec<(Handle<Mesh>, [Handle<StandardMaterial>; 3])> = KINDS
         .iter()
@@ -310,6 +408,6 @@ fn show_info(
             line += &format!("  {} {}", m.label(), counts[m.index()]);
         }
     }
-    line += &format!("   on the ground: {grounded}   B: a blast");
+    line += &format!("   on the ground: {grounded}   B: a blast   C: view");
     info.0 = line;
 }

@@ -4,12 +4,12 @@
 //! and the aero bodies live.
 //!
 //! Keys: 1 leaves, 2 coin, 3 flag, 4 gallery · G gizmos (off, wind, paths and yarns, all) ·
-//! ↑/↓ wind speed · ←/→ wind direction · in the leaves scene B a blast (a dust devil wanders
+//! ↑/↓ wind speed · ←/→ wind direction · in the leaves scene B a blast, C the view (a dust devil wanders
 //! anyway) · in the flag scene V flag/banner/curtain, F frozen/non-frozen (the curtain has a
 //! fan).
 //!
 //! `cargo run --example showcase --features example_scenes,egui -- [--scene leaves|coin|flag|gallery]
-//! [--fabric flag|banner|curtain] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`
+//! [--fabric flag|banner|curtain] [--view meadow] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`
 //!
 //! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits;
 //! `--gizmos` starts with the falling paths and cloth yarns drawn.
@@ -19,6 +19,7 @@ mod coin;
 mod common;
 mod flag;
 mod gallery;
+mod grass;
 mod leaves;
 #[cfg(feature = "egui")]
 mod panel;
@@ -97,6 +98,8 @@ fn main() {
         .unwrap_or_default();
     app.add_plugins(WindfallPlugins.set(WindPlugin::new(WindConfig {
         reference_speed: 2.5,
+        // Open grassland with a few trees: grass-high wind is not zero (the log law is 0 at z0).
+        roughness: 0.05,
         grid: [96, 96],
         temporal: TemporalMode::Evolving {
             samples: 16,
@@ -105,7 +108,11 @@ fn main() {
         seed: 5,
         ..default()
     })))
-    .add_plugins((FrameTimeDiagnosticsPlugin::default(), WindfallDebugPlugin))
+    .add_plugins((
+        FrameTimeDiagnosticsPlugin::default(),
+        WindfallDebugPlugin,
+        bevy_windfall::gpu::WindGpuPlugin,
+    ))
     .insert_state(start)
     .init_resource::<SceneInfo>()
     .add_plugins((leaves::plugin, coin::plugin, flag::plugin, gallery::plugin))

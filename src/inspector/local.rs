@@ -37,18 +37,20 @@ pub(super) fn local_wind(ui: &mut egui::Ui, targets: &mut Targets) {
     for (entity, source, name) in sources.into_iter().take(20) {
         let label = name.map_or_else(|| format!("entity {entity}"), |n| n.to_string());
         ui.label(format!("{} ({label})", kind(&source.shape)));
-        let (mut strength, mut shape) = (source.strength, source.shape);
+        let (mut strength, mut shape, mut pulse) = (source.strength, source.shape, source.pulse);
         ui.add(egui::Slider::new(&mut strength, 0.0..=3.0).text("strength"));
+        super::sections::pulse_sliders(ui, &mut pulse);
         ui.add(
             egui::Slider::new(extent(&mut shape), 0.1..=50.0)
                 .logarithmic(true)
                 .text("reach, m"),
         );
         // Written only when changed, so an untouched panel leaves change detection alone.
-        if strength != source.strength || shape != source.shape {
+        if strength != source.strength || shape != source.shape || pulse != source.pulse {
             let source = source.into_inner();
             source.strength = strength;
             source.shape = shape;
+            source.pulse = pulse;
         }
         ui.separator();
     }

@@ -9,7 +9,7 @@ use bevy_egui::egui;
 use super::{Targets, WindfallInspector};
 use crate::cloth::{ClothPreset, ClothWindModel, LeadingYarn};
 use crate::freefall::{FallPreset, FallingObject, Fluid, PrimitiveMotion, Shape};
-use crate::wind::TemporalMode;
+use crate::wind::{Pulse, TemporalMode};
 
 /// Picks `current` or the first of `candidates` (named ones first) with a combo box of at most
 /// 40 of them.
@@ -43,6 +43,14 @@ fn pick(
     *current
 }
 
+/// Sliders for a [`Pulse`]'s magnitude and frequency; whether either changed.
+pub(super) fn pulse_sliders(ui: &mut egui::Ui, pulse: &mut Pulse) -> bool {
+    let magnitude = ui.add(egui::Slider::new(&mut pulse.magnitude, 0.0..=1.0).text("pulse ±"));
+    let frequency =
+        ui.add(egui::Slider::new(&mut pulse.frequency, 0.0..=2.0).text("pulse frequency, Hz"));
+    magnitude.changed() || frequency.changed()
+}
+
 pub(super) fn wind(ui: &mut egui::Ui, inspector: &mut WindfallInspector, targets: &mut Targets) {
     let Some(settings) = targets.settings.as_mut() else {
         ui.label("no wind (add WindPlugin)");
@@ -64,12 +72,17 @@ pub(super) fn wind(ui: &mut egui::Ui, inspector: &mut WindfallInspector, targets
     {
         settings.direction = Vec2::from_angle(heading.to_radians());
     }
+    let mut pulse = settings.pulse;
+    if pulse_sliders(ui, &mut pulse) {
+        settings.pulse = pulse;
+    }
     // The turbulence: edited in a draft, applied (a background rebuild) when no control is
     // held, so dragging a slider does not start a rebuild a frame.
     let live = settings.config.clone();
     let draft = inspector.draft.get_or_insert_with(|| live.clone());
     draft.reference_speed = live.reference_speed;
     draft.direction = live.direction;
+    draft.pulse = live.pulse;
     ui.add(
         egui::Slider::new(&mut draft.roughness, 1e-4..=2.0)
             .logarithmic(true)

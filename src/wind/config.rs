@@ -2,6 +2,7 @@
 
 use bevy::math::Vec2;
 
+use super::pulse::Pulse;
 use crate::spectrum::FftBackend;
 use bevy::reflect::Reflect;
 use thiserror::Error;
@@ -52,6 +53,7 @@ pub enum TemporalMode {
 /// | `cell_size` | m | 1.0 | distance between grid nodes |
 /// | `seed` | – | 0 | seed of the turbulence |
 /// | `fft` | – | `Portable` | [`FftBackend`]: same bits on every machine, or SIMD speed |
+/// | `pulse` | – | none | [`Pulse`]: a periodic swell of the whole wind (Unity's pulse magnitude and frequency) |
 #[derive(Clone, Debug, PartialEq, Reflect)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WindConfig {
@@ -80,6 +82,9 @@ pub struct WindConfig {
     /// Planner of the inverse FFT: `Portable` (same bits everywhere) or `Simd` (faster).
     #[reflect(ignore)]
     pub fft: FftBackend,
+    /// A periodic swell of the wind's strength; applies at once, without a rebuild.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub pulse: Pulse,
 }
 
 impl Default for WindConfig {
@@ -97,6 +102,7 @@ impl Default for WindConfig {
             cell_size: 1.0,
             seed: 0,
             fft: FftBackend::Portable,
+            pulse: Pulse::default(),
         }
     }
 }
@@ -272,6 +278,6 @@ impl WindConfig {
                 nodes,
             });
         }
-        Ok(())
+        self.pulse.validate()
     }
 }

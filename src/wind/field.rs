@@ -2,12 +2,13 @@
 
 use bevy::ecs::reflect::ReflectResource;
 use bevy::ecs::resource::Resource;
-use bevy::math::{Vec2, Vec3};
+use bevy::math::{DVec2, Vec2, Vec3};
 use bevy::reflect::Reflect;
 
 use super::config::{SpatialMode, TemporalMode, WindConfig, WindError};
 use super::ease::Ease;
 use super::profile;
+use super::pulse::Pulse;
 use super::shelter::PlacedShelter;
 use super::source::PlacedSource;
 use crate::spectrum::{GridShape, SpectrumError, Synthesizer, periodic_lerp, periodic_lerp_2d};
@@ -84,6 +85,12 @@ pub struct WindField {
     shelters: Vec<PlacedShelter>,
     /// The clock before the last [`WindField::advance`]: when the step now simulated began.
     step_start: f64,
+    /// How far the turbulence pattern had travelled (x, z; m, at the reference speed) when the
+    /// mean speed or direction last changed, at wind time `drift_since`: Taylor's hypothesis with
+    /// a speed that changes, ∫ U dt, so a change of the mean wind never makes the pattern jump.
+    pub(super) drift_base: DVec2,
+    /// Wind time of the last change of the mean speed or direction.
+    pub(super) drift_since: f64,
 }
 
 /// Numbers the fields made by [`WindField::new`].
@@ -137,6 +144,8 @@ impl WindField {
             ease: None,
             shelters: Vec::new(),
             step_start: 0.0,
+            drift_base: DVec2::ZERO,
+            drift_since: 0.0,
         };
         field.derive();
         Ok(field)
@@ -199,6 +208,7 @@ impl WindField {
         let mut config = self.config.clone();
         config.reference_speed = speed;
         validate_extra(&config)?;
+        self.rebase_drift();
         self.config = config;
         self.ease = None;
         self.derive();
@@ -211,10 +221,34 @@ impl WindField {
         let mut config = self.config.clone();
         config.direction = direction;
         validate_extra(&config)?;
+        self.rebase_drift();
         self.config = config;
         self.ease = None;
         self.derive();
         Ok(())
+    }
+
+    /// Sets the periodic swell of the wind's strength ([`Pulse`]) at once.
+    ///
+    /// # Errors
+    /// A magnitude outside [0, 1] or a frequency outside [0, 100] Hz, named.
+    pub fn set_pulse(&mut self, pulse: Pulse) -> Result<(), WindError> {
+        pulse.validate()?;
+        self.config.pulse = pulse;
+        Ok(())
+    }
+
+    /// Books the pattern's travel so far at the current speed and direction, before they change.
+    fn rebase_drift(&mut self) {
+        self.drift_base = self.drift_at(self.time);
+        self.drift_since = self.time;
+    }
+
+    /// How far the pattern has travelled at the reference speed by wind time `time`, m (x, z):
+    /// the travel booked so far plus the current mean wind times the time since.
+    pub(crate) fn drift_at(&self, time: f64) -> DVec2 {
+        let span = f64::from(self.config.reference_speed) * (time - self.drift_since);
+        self.drift_base + DVec2::new(f64::from(self.along.x), f64::from(self.along.z)) * span
     }
 
     /// Eases the mean wind toward `speed` (m/s at the reference height) and `direction` (x, z)
@@ -255,6 +289,26 @@ impl WindField {
         Ok(())
     }
 
+    /// Restores an easing (from a [`WindSnapshot`](super::WindSnapshot)) without stepping it.
+    pub(super) fn resume_easing(
+        &mut self,
+        speed: f32,
+        direction: Vec2,
+        time_constant: f32,
+    ) -> Result<(), WindError> {
+        let (speed_now, direction_now) = (self.config.reference_speed, self.config.direction);
+        self.ease_to(speed, direction, time_constant.max(f32::MIN_POSITIVE))?;
+        // ease_to with τ > 0 changes nothing yet; keep the exact τ.
+        if let Some(ease) = self.ease.as_mut() {
+            ease.time_constant = time_constant;
+        }
+        debug_assert_eq!(
+            (speed_now, direction_now),
+            (self.config.reference_speed, self.config.direction)
+        );
+        Ok(())
+    }
+
     /// Where [`Self::ease_to`] is taking the mean wind: (speed, unit direction, τ).
     pub fn easing(&self) -> Option<(f32, Vec2, f32)> {
         self.ease.map(|e| (e.speed, e.direction, e.time_constant))
@@ -266,6 +320,7 @@ impl WindField {
         };
         let now = Vec2::new(self.along.x, self.along.z);
         let (speed, direction, arrived) = ease.step(self.config.reference_speed, now, dt);
+        self.rebase_drift();
         self.config.reference_speed = speed;
         self.config.direction = direction;
         if arrived {
@@ -305,14 +360,16 @@ impl WindField {
         }
     }
 
-    /// Takes over `old`'s clock (time, time scale, pause) and its [`Self::ease_to`] in progress,
-    /// so a rebuilt field continues where the old one was.
+    /// Takes over `old`'s clock (time, time scale, pause), its [`Self::ease_to`] in progress and
+    /// how far its pattern has travelled, so a rebuilt field continues where the old one was.
     pub fn continue_clock_of(&mut self, old: &WindField) {
         self.time = old.time;
         self.time_scale = old.time_scale;
         self.paused = old.paused;
         self.ease = old.ease;
         self.step_start = old.step_start;
+        self.drift_base = old.drift_base;
+        self.drift_since = old.drift_since;
     }
 
     /// Replaces the local sources (the [`WindPlugin`](super::WindPlugin) does this every fixed
@@ -331,6 +388,36 @@ impl WindField {
     /// source added before this step started then.
     pub(crate) fn step_start(&self) -> f64 {
         self.step_start
+    }
+
+    /// The unit-variance turbulence per node, row-major over [`Self::grid_dims`].
+    #[cfg(feature = "render")]
+    pub(crate) fn nodes(&self) -> &[Vec3] {
+        &self.nodes
+    }
+
+    /// Node counts per axis, row-major: `[time?, x, y?, z]`.
+    #[cfg(feature = "render")]
+    pub(crate) fn grid_dims(&self) -> &[usize] {
+        self.shape.dims()
+    }
+
+    /// (ln(h_ref/z0), ln z0): eq. 14's denominator and the log of the roughness.
+    #[cfg(feature = "render")]
+    pub(crate) fn log_constants(&self) -> (f32, f32) {
+        (self.log_reference, self.log_roughness)
+    }
+
+    /// The sources placed at the last fixed step, in the order they are summed.
+    #[cfg(feature = "render")]
+    pub(crate) fn placed_sources(&self) -> &[PlacedSource] {
+        &self.sources
+    }
+
+    /// The shelters placed at the last fixed step.
+    #[cfg(feature = "render")]
+    pub(crate) fn placed_shelters(&self) -> &[PlacedShelter] {
+        &self.shelters
     }
 
     /// How many [`WindShelter`](super::WindShelter)s calm the field (as of the last fixed step).
@@ -408,26 +495,34 @@ impl WindField {
             0.0
         };
         let g = log_ratio / self.log_reference; // eq. 14
-        let (mean, scale, advection) = match c.spatial {
-            SpatialMode::Plane => (c.reference_speed * g, g, c.reference_speed),
+        // `travel`: how the pattern's travel at this height compares with the reference's.
+        let (mean, scale, advection, travel) = match c.spatial {
+            SpatialMode::Plane => (c.reference_speed * g, g, c.reference_speed, 1.0),
             SpatialMode::Volume { .. } => {
                 let mean = c.reference_speed * g; // = (u*/κ) ln(h/z0), eq. 10
-                (mean, g.min(1.0), mean)
+                (mean, g.min(1.0), mean, g)
             }
         };
         let time = if time.is_finite() { time } else { 0.0 };
-        // Taylor's hypothesis: the pattern translates with the mean wind.
-        let shift = f64::from(advection) * time;
+        // Taylor's hypothesis: the pattern translates with the mean wind, by ∫ U dt (the travel
+        // booked before the last change of speed or direction, plus U × the time since).
+        let shift = f64::from(advection) * (time - self.drift_since);
+        let base = self.drift_base * f64::from(travel);
         let per_cell = 1.0 / f64::from(c.cell_size);
-        let x = (f64::from(position.x) - f64::from(self.along.x) * shift) * per_cell;
-        let z = (f64::from(position.z) - f64::from(self.along.z) * shift) * per_cell;
+        let x = (f64::from(position.x) - (base.x + f64::from(self.along.x) * shift)) * per_cell;
+        let z = (f64::from(position.z) - (base.y + f64::from(self.along.z) * shift)) * per_cell;
         let n = if self.shape.dims().len() == 2 {
             periodic_lerp_2d(&self.shape, &self.nodes, x, z)
         } else {
             self.sample_nd(position, time, x, z)
         } * scale
             * self.sigma();
-        self.along * (mean + n.x) + self.across * n.y + Vec3::Y * n.z
+        let wind = self.along * (mean + n.x) + self.across * n.y + Vec3::Y * n.z;
+        if c.pulse.is_active() {
+            wind * c.pulse.factor(time)
+        } else {
+            wind
+        }
     }
 
     /// The turbulence read on a 3- or 4-D grid.

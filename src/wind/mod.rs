@@ -20,6 +20,7 @@ mod field;
 mod gizmos;
 mod plugin;
 pub mod profile;
+mod pulse;
 mod rebuild;
 mod settings;
 mod shelter;
@@ -33,6 +34,7 @@ pub use field::{MAX_CLOCK, MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, WindFi
 #[cfg(feature = "gizmos")]
 pub use gizmos::{WindGizmos, WindGizmosPlugin, speed_class_color};
 pub use plugin::WindPlugin;
+pub use pulse::{MAX_PULSE_FREQUENCY, Pulse};
 pub use rebuild::{REBUILD_STEPS, WindRebuild, WindRebuilt};
 pub use settings::WindSettings;
 pub(crate) use settings::apply_wind_settings;

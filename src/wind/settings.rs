@@ -11,8 +11,8 @@ use super::rebuild::start_rebuild;
 use super::{WindConfig, WindField, WindRebuild};
 
 /// The wind's settings, live: edit them (in code, an inspector or a saved scene) and
-/// [`WindPlugin`](super::WindPlugin) follows on the next fixed step. The mean speed and direction
-/// apply at once; anything that changes the turbulence (β, roughness, grid, seed, modes) starts a
+/// [`WindPlugin`](super::WindPlugin) follows on the next fixed step. The mean speed, direction
+/// and pulse apply at once; anything that changes the turbulence (β, roughness, grid, seed, modes) starts a
 /// [`WindRebuild`] in the background, which lands a fixed number of steps later, whatever the
 /// machine (see [`WindRebuild`]); edits made meanwhile are merged into the new field, never lost.
 /// A bad value is refused with a warning that names the field; the wind keeps what it had and
@@ -65,14 +65,16 @@ pub(crate) fn needs_rebuild(a: &WindConfig, b: &WindConfig) -> bool {
     let strip = |c: &WindConfig| WindConfig {
         reference_speed: 0.0,
         direction: bevy::math::Vec2::X,
+        pulse: super::Pulse::default(),
         ..c.clone()
     };
     strip(a) != strip(b)
 }
 
 /// Follows [`WindSettings`]: what changed in them since the last step applies, speed and
-/// direction at once, the rest by a background rebuild. A field changed directly
-/// ([`WindField::set_reference_speed`], [`WindField::set_direction`], a newly inserted field) is
+/// direction (and pulse) at once, the rest by a background rebuild. A field changed directly
+/// ([`WindField::set_reference_speed`], [`WindField::set_direction`],
+/// [`WindField::set_pulse`], a newly inserted field) is
 /// reflected back into the settings, so neither kind of edit overwrites the other.
 pub fn apply_wind_settings(
     mut commands: Commands,
@@ -98,6 +100,11 @@ pub fn apply_wind_settings(
         {
             refused = Some(e);
         }
+        if target.pulse != seen.pulse
+            && let Err(e) = field.set_pulse(target.pulse)
+        {
+            refused = Some(e);
+        }
         if needs_rebuild(seen, &target) {
             match start_rebuild(target.clone(), Some(field.generation())) {
                 Ok(job) => {
@@ -117,12 +124,14 @@ pub fn apply_wind_settings(
     let mut synced = settings.config.clone();
     synced.reference_speed = live.reference_speed;
     synced.direction = live.direction;
+    synced.pulse = live.pulse;
     if rebuild.is_none() && !settings.is_changed() {
         synced = live.clone();
     }
     if synced != settings.config {
         seen.reference_speed = synced.reference_speed;
         seen.direction = synced.direction;
+        seen.pulse = synced.pulse;
         if rebuild.is_none() && !settings.is_changed() {
             *seen = synced.clone();
         }

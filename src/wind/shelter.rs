@@ -94,7 +94,7 @@ impl WindShelter {
 }
 
 /// The width of the transition at a room's walls, m.
-const ROOM_EDGE: f32 = 0.25;
+pub(crate) const ROOM_EDGE: f32 = 0.25;
 
 /// The fade (1 − s²)².
 fn fade(s: f32) -> f32 {
@@ -105,11 +105,11 @@ fn fade(s: f32) -> f32 {
 /// A shelter placed in the world for one fixed step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct PlacedShelter {
-    kind: ShelterKind,
-    half: Vec3,
-    origin: Vec3A,
-    to_local: Quat,
-    reach2: f32,
+    pub(crate) kind: ShelterKind,
+    pub(crate) half: Vec3,
+    pub(crate) origin: Vec3A,
+    pub(crate) to_local: Quat,
+    pub(crate) reach2: f32,
 }
 
 impl PlacedShelter {

@@ -1,5 +1,6 @@
 //! Everything that decides the wind's velocities, as one value to save or send.
 
+use bevy::math::{DVec2, Vec2};
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 
@@ -20,8 +21,14 @@ use super::{WindConfig, WindError, WindField};
 ///
 /// let mut server = WindField::new(WindConfig { grid: [32, 32], ..Default::default() })?;
 /// server.advance(12.5);
+/// server.ease_to(9.0, bevy::math::Vec2::Y, 3.0)?; // a storm building up, veering
+/// server.advance(1.0);
 /// let client = WindField::from_snapshot(&server.snapshot())?;
 /// let p = Vec3::new(3.0, 2.0, -7.0);
+/// assert_eq!(client.velocity(p), server.velocity(p));
+/// let (mut server, mut client) = (server, client);
+/// server.advance(0.5);
+/// client.advance(0.5);
 /// assert_eq!(client.velocity(p), server.velocity(p));
 /// # Ok::<(), bevy_windfall::wind::WindError>(())
 /// ```
@@ -37,6 +44,16 @@ pub struct WindSnapshot {
     pub time_scale: f32,
     /// [`WindField::paused`].
     pub paused: bool,
+    /// How far the turbulence pattern had travelled (x, z, m at the reference speed) when the
+    /// mean wind last changed speed or direction.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub drift: DVec2,
+    /// The wind time of that change, s.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub drift_since: f64,
+    /// A [`WindField::ease_to`] in progress: (target speed, unit direction, τ).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub easing: Option<(f32, Vec2, f32)>,
 }
 
 impl WindField {
@@ -47,6 +64,9 @@ impl WindField {
             time: self.time_seconds(),
             time_scale: self.time_scale,
             paused: self.paused,
+            drift: self.drift_base,
+            drift_since: self.drift_since,
+            easing: self.easing(),
         }
     }
 
@@ -56,6 +76,8 @@ impl WindField {
         for (field, value) in [
             ("time", snapshot.time),
             ("time_scale", f64::from(snapshot.time_scale)),
+            ("drift", snapshot.drift.x + snapshot.drift.y),
+            ("drift_since", snapshot.drift_since),
         ] {
             if !value.is_finite() {
                 return Err(WindError::Invalid {
@@ -69,6 +91,11 @@ impl WindField {
         field.set_clock(snapshot.time);
         field.time_scale = snapshot.time_scale;
         field.paused = snapshot.paused;
+        field.drift_base = snapshot.drift;
+        field.drift_since = snapshot.drift_since;
+        if let Some((speed, direction, time_constant)) = snapshot.easing {
+            field.resume_easing(speed, direction, time_constant)?;
+        }
         Ok(field)
     }
 }

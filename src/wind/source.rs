@@ -14,6 +14,7 @@ use bevy::transform::components::Transform;
 use std::f32::consts::FRAC_PI_2;
 
 use super::config::WindError;
+use super::pulse::{MAX_PULSE_FREQUENCY, Pulse};
 
 /// What a [`WindSource`] blows, in metres and m/s.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -108,6 +109,9 @@ pub struct WindSource {
     pub shape: SourceShape,
     /// Multiplies the velocity: 0 switches it off, 2 doubles it.
     pub strength: f32,
+    /// A periodic swell of the strength, its phase counted from when the source started (so it
+    /// starts at full `strength` and swells first); none by default.
+    pub pulse: Pulse,
 }
 
 impl Default for WindSource {
@@ -137,7 +141,17 @@ impl WindSource {
         Self {
             shape,
             strength: 1.0,
+            pulse: Pulse::default(),
         }
+    }
+
+    /// This source with a [`Pulse`]: its strength swells by ±`magnitude` (relative, clamped to
+    /// [0, 1]) `frequency` times a second (clamped to [0, 100] Hz; non-finite values become 0),
+    /// like Unity's WindZone pulse. The mean over a period is unchanged.
+    pub fn with_pulse(mut self, magnitude: f32, frequency: f32) -> Self {
+        let clamp = |v: f32, hi: f32| if v.is_finite() { v.clamp(0.0, hi) } else { 0.0 };
+        self.pulse = Pulse::new(clamp(magnitude, 1.0), clamp(frequency, MAX_PULSE_FREQUENCY));
+        self
     }
 
     /// `velocity` (world frame, m/s) at the centre, fading smoothly and monotonically to zero at
@@ -323,17 +337,18 @@ fn plateau(x: f32, inner: f32, outer: f32) -> f32 {
 /// A source placed in the world for one fixed step: what the field samples.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct PlacedSource {
-    shape: SourceShape,
-    strength: f32,
-    origin: Vec3A,
+    pub(crate) shape: SourceShape,
+    pub(crate) strength: f32,
+    pub(crate) pulse: Pulse,
+    pub(crate) origin: Vec3A,
     /// World to local rotation (the inverse of the entity's).
-    to_local: Quat,
+    pub(crate) to_local: Quat,
     /// Local to world rotation.
-    to_world: Quat,
+    pub(crate) to_world: Quat,
     /// reach².
-    reach2: f32,
+    pub(crate) reach2: f32,
     /// Wind time the source started at (blasts).
-    start: f64,
+    pub(crate) start: f64,
 }
 
 impl PlacedSource {
@@ -350,6 +365,7 @@ impl PlacedSource {
         Some(Self {
             shape: source.shape,
             strength,
+            pulse: source.pulse,
             origin: origin.into(),
             to_local: rotation.inverse(),
             to_world: rotation,
@@ -366,7 +382,12 @@ impl PlacedSource {
         if r2.is_nan() || r2 >= self.reach2 {
             return Vec3::ZERO;
         }
-        self.inside(Vec3::from(d), r2, time) * self.strength
+        let strength = if self.pulse.is_active() {
+            self.strength * self.pulse.factor(time - self.start)
+        } else {
+            self.strength
+        };
+        self.inside(Vec3::from(d), r2, time) * strength
     }
 
     fn inside(&self, d: Vec3, r2: f32, time: f64) -> Vec3 {

@@ -1,0 +1,160 @@
+//! Wind on the GPU (feature `render`): the [`WindField`] uploaded as two storage buffers and a
+//! WGSL module, `bevy_windfall::wind`, whose `wind_velocity_at(position, dt)` returns what
+//! [`WindField::velocity_at`] returns on the CPU for the same field: the same nodes read by the
+//! same multilinear interpolation and wrapping, the same log law (eq. 10, 14), pulse, shelters
+//! and local sources. Grass, foliage and particles then sway in the very gusts that carry the
+//! falling leaves.
+//!
+//! | buffer | binding | contents | uploaded |
+//! |---|---|---|---|
+//! | `wind_nodes` | 100 | the turbulence nodes, 3 × f32 each ([`node_bytes`]) | when the field is built or rebuilt |
+//! | `wind_params` | 101 | [`GpuWindParams`]: clock, log-law constants, σ's, travel, pulse, ≤ [`MAX_GPU_LOCALS`] shelters and sources | every frame (7 280 B) |
+//!
+//! Both live in [`WindGpuBuffers`] as [`ShaderBuffer`] assets: bind them in a material
+//! (`#[storage(100, read_only)]`, `#[storage(101, read_only)]`) or in a compute pass (set the
+//! shader def `WIND_BIND_GROUP` to the group's index). In WGSL:
+//!
+//! ```wgsl
+//! #import bevy_windfall::wind::{wind_velocity, wind_velocity_at}
+//!
+//! let here = wind_velocity(world_position);        // at the field's clock
+//! let soon = wind_velocity_at(world_position, 0.5); // half a second of wind time later
+//! ```
+//!
+//! Time in the shader is relative to the uploaded clock (`dt`, seconds): everything that grows
+//! with the clock is reduced on the CPU in f64, so f32 on the GPU stays as exact as the CPU
+//! after hours of play. `tests/gpu_wind.rs` checks the GPU against the CPU at thousands of points.
+
+mod params;
+mod sway;
+
+pub use params::{GpuLocal, GpuWindParams, MAX_GPU_LOCALS, node_bytes};
+pub use sway::{SwaySettings, WindSway, WindSwayMaterial};
+
+use bevy::app::{App, Plugin, PostUpdate};
+use bevy::asset::{Assets, Handle, RenderAssetUsages};
+use bevy::ecs::prelude::*;
+use bevy::log::warn;
+use bevy::render::storage::ShaderBuffer;
+
+use crate::wind::WindField;
+
+/// Uploads the [`WindField`] to the GPU and registers the WGSL module `bevy_windfall::wind`.
+/// Add it after `DefaultPlugins` (it needs the renderer) and a [`WindPlugin`](crate::wind::WindPlugin).
+///
+/// # Example
+///
+/// ```no_run
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+/// use bevy_windfall::gpu::WindGpuPlugin;
+///
+/// App::new()
+///     .add_plugins((DefaultPlugins, WindfallPlugins, WindGpuPlugin))
+///     .run();
+/// ```
+#[derive(Default)]
+pub struct WindGpuPlugin;
+
+/// The wind's GPU buffers (see the [module](self)): bind these handles.
+#[derive(Resource, Clone, Debug)]
+pub struct WindGpuBuffers {
+    /// The turbulence nodes (`wind_nodes`, binding 100).
+    pub nodes: Handle<ShaderBuffer>,
+    /// The per-frame [`GpuWindParams`] (`wind_params`, binding 101).
+    pub params: Handle<ShaderBuffer>,
+}
+
+/// What the last uploads cost: bytes of nodes per field and of parameters per frame.
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+pub struct WindGpuUploads {
+    /// The [`WindField::generation`] the nodes on the GPU belong to (0: none yet).
+    pub generation: u64,
+    /// Bytes of the node buffer.
+    pub node_bytes: usize,
+    /// How many times the nodes were uploaded.
+    pub node_uploads: u32,
+    /// Bytes of the parameters, sent every frame.
+    pub param_bytes: usize,
+}
+
+impl Plugin for WindGpuPlugin {
+    fn build(&self, app: &mut App) {
+        bevy::shader::load_shader_library!(app, "wind.wgsl");
+        bevy::asset::embedded_asset!(app, "sway.wgsl");
+        app.init_resource::<WindGpuUploads>()
+            .add_plugins(bevy::pbr::MaterialPlugin::<WindSwayMaterial>::default())
+            .add_systems(PostUpdate, (upload_wind, refresh_sway_materials).chain());
+    }
+
+    fn finish(&self, app: &mut App) {
+        let Some(mut buffers) = app.world_mut().get_resource_mut::<Assets<ShaderBuffer>>() else {
+            warn!("WindGpuPlugin needs the renderer (add it after DefaultPlugins)");
+            return;
+        };
+        // Placeholders of the right kind until the first upload: one node, empty parameters.
+        let nodes = buffers.add(ShaderBuffer::new(&[0; 12], RenderAssetUsages::RENDER_WORLD));
+        let params = buffers.add(params_buffer(&empty_params()));
+        app.insert_resource(WindGpuBuffers { nodes, params });
+    }
+}
+
+fn empty_params() -> GpuWindParams {
+    GpuWindParams::of(
+        &WindField::new(crate::wind::WindConfig {
+            grid: [2, 2],
+            ..Default::default()
+        })
+        .expect("a valid field"),
+    )
+}
+
+fn params_buffer(params: &GpuWindParams) -> ShaderBuffer {
+    let mut buffer = ShaderBuffer::default();
+    buffer.set_data(params.clone());
+    buffer
+}
+
+/// When the node buffer changes size (a new grid), the GPU buffer is a new one: the sway
+/// materials' bind groups are rebuilt by marking the materials changed.
+fn refresh_sway_materials(
+    uploads: Res<WindGpuUploads>,
+    mut materials: ResMut<Assets<WindSwayMaterial>>,
+    mut bound: Local<usize>,
+) {
+    if uploads.node_bytes != *bound {
+        *bound = uploads.node_bytes;
+        let ids: Vec<_> = materials.ids().collect();
+        for id in ids {
+            materials.get_mut(id);
+        }
+    }
+}
+
+/// Sends the nodes when the field is new and the parameters every frame.
+fn upload_wind(
+    field: Option<Res<WindField>>,
+    gpu: Option<Res<WindGpuBuffers>>,
+    mut buffers: ResMut<Assets<ShaderBuffer>>,
+    mut uploads: ResMut<WindGpuUploads>,
+) {
+    let (Some(field), Some(gpu)) = (field, gpu) else {
+        return;
+    };
+    if uploads.generation != field.generation() {
+        let bytes = node_bytes(&field);
+        uploads.generation = field.generation();
+        uploads.node_bytes = bytes.len();
+        uploads.node_uploads += 1;
+        // Kept on the render side only: no CPU copy of the nodes stays behind.
+        let buffer = ShaderBuffer::new(&bytes, RenderAssetUsages::RENDER_WORLD);
+        if buffers.insert(&gpu.nodes, buffer).is_err() {
+            warn!("WindGpuPlugin: the node buffer was removed");
+        }
+    }
+    let params = GpuWindParams::of(&field);
+    if let Some(mut buffer) = buffers.get_mut(&gpu.params) {
+        buffer.set_data(params);
+        uploads.param_bytes = buffer.data.as_ref().map_or(0, Vec::len);
+    }
+}

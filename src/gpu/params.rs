@@ -1,0 +1,265 @@
+//! What the GPU needs of a [`WindField`], packed as `wind.wgsl` reads it: the turbulence nodes
+//! once per field, and every frame the small [`GpuWindParams`] (clock, log-law constants, σ's,
+//! the pattern's travel, the pulse, shelters and local sources).
+//!
+//! Every time-dependent quantity is taken at the field's clock `t0` in f64 and reduced there
+//! (the travel modulo the grid's period, the time coordinate modulo the samples, the pulse
+//! phase modulo 1), so the shader only adds `dt` (seconds after `t0`) in f32 and stays as exact
+//! as the CPU after hours of play.
+
+use bevy::math::{DVec2, UVec4, Vec2, Vec3, Vec4};
+use bevy::render::render_resource::ShaderType;
+
+use crate::wind::{ShelterKind, SourceShape, SpatialMode, TemporalMode, WindField};
+
+/// Shelters and sources the GPU sees at once, together ([`GpuWindParams::locals`]); the rest
+/// are left out (and [`GpuWindParams::dropped`] counts them). A fixed size keeps the buffer's
+/// size, so bind groups that hold it never go stale.
+pub const MAX_GPU_LOCALS: usize = 64;
+
+/// One shelter or local source, as `WindLocal` in `wind.wgsl`.
+#[derive(ShaderType, Clone, Copy, Debug, Default, PartialEq)]
+pub struct GpuLocal {
+    /// World position of the entity.
+    pub origin: Vec3,
+    /// What it is: 1 sphere, 2 fan, 3 vortex, 4 blast, 5 gust; 10 room, 11 wall.
+    pub kind: u32,
+    /// World-to-local rotation (x, y, z, w).
+    pub to_local: Vec4,
+    /// Local-to-world rotation (x, y, z, w).
+    pub to_world: Vec4,
+    /// A sphere's velocity, or a shelter's half extents.
+    pub vector: Vec3,
+    /// Nothing beyond this distance², m².
+    pub reach_squared: f32,
+    /// The shape's numbers, in the order of [`SourceShape`]'s fields after the first vector
+    /// (fan: range, half angle, speed; vortex: radius, peak speed, updraft; blast: peak speed,
+    /// front speed, radius; gust: strength, front speed, width, range; sphere: radius; wall: lee
+    /// heights, depth).
+    pub shape: Vec4,
+    /// The source's strength.
+    pub strength: f32,
+    /// Seconds since it started, at `t0`.
+    pub age: f32,
+    /// Its pulse: magnitude, frequency (Hz), phase at `t0` (cycles, in [0, 1)).
+    pub pulse: Vec3,
+}
+
+/// The per-frame parameters of the wind, as `WindParams` in `wind.wgsl`.
+#[derive(ShaderType, Clone, Debug, PartialEq)]
+pub struct GpuWindParams {
+    /// Nodes along (time, x, y, z); 1 for an axis the field does not have.
+    pub dims: UVec4,
+    /// Unit direction of the mean wind (x, z).
+    pub along: Vec2,
+    /// How far the turbulence pattern has travelled at `t0` at the reference speed (x, z), m;
+    /// for a plane field reduced modulo the grid's period.
+    pub drift: Vec2,
+    /// U(h_ref), m/s.
+    pub reference_speed: f32,
+    /// z0, m.
+    pub roughness: f32,
+    /// ln z0.
+    pub log_roughness: f32,
+    /// ln(h_ref/z0), eq. 14's denominator.
+    pub log_reference: f32,
+    /// (σ_u, σ_v, σ_w) at the reference height, m/s.
+    pub sigma: Vec3,
+    /// Distance between nodes, m.
+    pub cell_size: f32,
+    /// 1 for a volume field (the pattern travels at the local mean wind), 0 for a plane.
+    pub volume: u32,
+    /// The time coordinate at `t0`, in samples modulo the sample count (evolving fields).
+    pub time_coordinate: f32,
+    /// Samples per second of wind time (evolving fields; 0 when frozen).
+    pub samples_per_second: f32,
+    /// Wind time `t0`, s, as f32 (for display; the shader works relative to it).
+    pub time: f32,
+    /// The global pulse: magnitude, frequency (Hz), phase at `t0` (cycles, in [0, 1)).
+    pub pulse: Vec3,
+    /// How many of [`Self::locals`] are shelters (they come first).
+    pub shelter_count: u32,
+    /// How many of [`Self::locals`] are sources (after the shelters).
+    pub source_count: u32,
+    /// Shelters and sources beyond [`MAX_GPU_LOCALS`], left out.
+    pub dropped: u32,
+    /// Shelters, then sources in the order the CPU sums them.
+    pub locals: [GpuLocal; MAX_GPU_LOCALS],
+}
+
+/// `x` modulo `period` in [0, period) (f64, then f32).
+fn wrap(x: f64, period: f64) -> f32 {
+    if period > 0.0 && x.is_finite() {
+        (x - (x / period).floor() * period) as f32
+    } else {
+        0.0
+    }
+}
+
+/// A pulse as (magnitude, frequency, phase at `age`), clamped as [`crate::wind::Pulse::factor`]
+/// clamps; an inactive pulse is all zeros.
+fn pulse(p: crate::wind::Pulse, age: f64) -> Vec3 {
+    if !(p.is_active() && p.magnitude.is_finite() && p.frequency.is_finite()) {
+        return Vec3::ZERO;
+    }
+    let m = p.magnitude.clamp(0.0, 1.0);
+    let f = p.frequency.clamp(0.0, crate::wind::MAX_PULSE_FREQUENCY);
+    let phase = if age.is_finite() {
+        (age * f64::from(f)).rem_euclid(1.0) as f32
+    } else {
+        0.0
+    };
+    Vec3::new(m, f, phase)
+}
+
+fn quat(q: bevy::math::Quat) -> Vec4 {
+    Vec4::from(q)
+}
+
+impl GpuWindParams {
+    /// The parameters of `field` at its own clock.
+    pub fn of(field: &WindField) -> Self {
+        let t0 = field.time_seconds();
+        let c = field.config();
+        let dims = field.grid_dims();
+        let evolving = matches!(c.temporal, TemporalMode::Evolving { .. });
+        let volume = matches!(c.spatial, SpatialMode::Volume { .. });
+        let mut axes = dims.iter().copied();
+        let nt = if evolving {
+            axes.next().unwrap_or(1)
+        } else {
+            1
+        };
+        let nx = axes.next().unwrap_or(1);
+        let ny = if volume { axes.next().unwrap_or(1) } else { 1 };
+        let nz = axes.next().unwrap_or(1);
+        let (time_coordinate, samples_per_second) = match c.temporal {
+            TemporalMode::Evolving { samples, period } => (
+                wrap(t0 / f64::from(period) * samples as f64, samples as f64),
+                samples as f32 / period,
+            ),
+            TemporalMode::Frozen => (0.0, 0.0),
+        };
+        let drift: DVec2 = field.drift_at(t0);
+        let cell = f64::from(c.cell_size);
+        // A plane's pattern repeats every n cells: reduce the travel there, exactly. A volume's
+        // travel is scaled by the height's log-law ratio first, so it is sent whole.
+        let drift = if volume {
+            drift.as_vec2()
+        } else {
+            Vec2::new(
+                wrap(drift.x, nx as f64 * cell),
+                wrap(drift.y, nz as f64 * cell),
+            )
+        };
+        let (log_reference, log_roughness) = field.log_constants();
+        let along = field.direction();
+        let mut locals = [GpuLocal::default(); MAX_GPU_LOCALS];
+        let shelters = field.placed_shelters();
+        let sources = field.placed_sources();
+        let mut count = 0;
+        for s in shelters.iter().take(MAX_GPU_LOCALS) {
+            let (kind, shape) = match s.kind {
+                ShelterKind::Indoor => (10, Vec4::ZERO),
+                ShelterKind::Wall { lee_heights, depth } => {
+                    (11, Vec4::new(lee_heights, depth, 0.0, 0.0))
+                }
+            };
+            locals[count] = GpuLocal {
+                origin: s.origin.into(),
+                kind,
+                to_local: quat(s.to_local),
+                to_world: quat(s.to_local.inverse()),
+                vector: s.half,
+                reach_squared: s.reach2,
+                shape,
+                ..GpuLocal::default()
+            };
+            count += 1;
+        }
+        let shelter_count = count;
+        for s in sources.iter().take(MAX_GPU_LOCALS - shelter_count) {
+            let (kind, vector, shape) = match s.shape {
+                SourceShape::Sphere { radius, velocity } => {
+                    (1, velocity, Vec4::new(radius, 0.0, 0.0, 0.0))
+                }
+                SourceShape::Fan {
+                    range,
+                    half_angle,
+                    speed,
+                } => (2, Vec3::ZERO, Vec4::new(range, half_angle, speed, 0.0)),
+                SourceShape::Vortex {
+                    radius,
+                    peak_speed,
+                    updraft,
+                } => (3, Vec3::ZERO, Vec4::new(radius, peak_speed, updraft, 0.0)),
+                SourceShape::Blast {
+                    peak_speed,
+                    front_speed,
+                    radius,
+                } => (
+                    4,
+                    Vec3::ZERO,
+                    Vec4::new(peak_speed, front_speed, radius, 0.0),
+                ),
+                SourceShape::Gust {
+                    strength,
+                    front_speed,
+                    width,
+                    range,
+                } => (
+                    5,
+                    Vec3::ZERO,
+                    Vec4::new(strength, front_speed, width, range),
+                ),
+            };
+            let age = t0 - s.start;
+            locals[count] = GpuLocal {
+                origin: s.origin.into(),
+                kind,
+                to_local: quat(s.to_local),
+                to_world: quat(s.to_world),
+                vector,
+                reach_squared: s.reach2,
+                shape,
+                strength: s.strength,
+                age: age as f32,
+                pulse: pulse(s.pulse, age),
+            };
+            count += 1;
+        }
+        Self {
+            dims: UVec4::new(nt as u32, nx as u32, ny as u32, nz as u32),
+            along: Vec2::new(along.x, along.z),
+            drift,
+            reference_speed: c.reference_speed,
+            roughness: c.roughness,
+            log_roughness,
+            log_reference,
+            sigma: field.sigma(),
+            cell_size: c.cell_size,
+            volume: u32::from(volume),
+            time_coordinate,
+            samples_per_second,
+            time: t0 as f32,
+            pulse: pulse(c.pulse, t0),
+            shelter_count: shelter_count as u32,
+            source_count: (count - shelter_count) as u32,
+            dropped: (shelters.len() + sources.len() - count) as u32,
+            locals,
+        }
+    }
+}
+
+/// The turbulence nodes as the shader reads them: three f32 (u, v, w) per node, row-major over
+/// (time, x, y, z), little-endian bytes.
+pub fn node_bytes(field: &WindField) -> Vec<u8> {
+    let nodes = field.nodes();
+    let mut bytes = Vec::with_capacity(nodes.len() * 12);
+    for n in nodes {
+        for v in n.to_array() {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    bytes
+}
