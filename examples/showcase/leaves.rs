@@ -75,7 +75,7 @@ fn gust_fronts(
     let downwind = wind.direction();
     let place = Transform::from_translation(CANOPY.with_y(0.0) - downwind * 14.0)
         .looking_to(downwind, Vec3::Y);
-    let gust = WindSource::gust(4.0, 5.0, 4.0, 30.0);
+    let gust = WindSource::gust(3.0, 5.0, 4.0, 30.0);
     match gusts.single() {
         Ok(entity) => {
             commands.entity(entity).insert((gust, place));
@@ -349,6 +349,11 @@ fn rest_and_release(
     time: Res<Time>,
 ) {
     for message in landed.read() {
+        // A leaf that a gust lifts and sets down again keeps its first rest's end, so gusts
+        // make the fallen leaves skitter without holding them on the ground.
+        if resting.contains(message.entity) {
+            continue;
+        }
         if let Ok(mut e) = commands.get_entity(message.entity) {
             let rest = REST * (1.0 + spawner.0.0.uniform());
             e.insert(Resting(Timer::from_seconds(rest, TimerMode::Once)));
