@@ -16,6 +16,7 @@
 #[cfg(feature = "avian")]
 mod avian;
 mod cloth;
+mod coefficients;
 mod force;
 mod plate;
 mod plugin;

@@ -96,20 +96,19 @@ fn wrap(x: f64, period: f64) -> f32 {
     }
 }
 
-/// A pulse as (magnitude, frequency, phase at `age`), clamped as [`crate::wind::Pulse::factor`]
-/// clamps; an inactive pulse is all zeros.
+/// A pulse as (magnitude, frequency, phase at `age`), clamped as
+/// [`crate::wind::Pulse::factor`] clamps; an inactive pulse is all zeros.
 fn pulse(p: crate::wind::Pulse, age: f64) -> Vec3 {
-    if !(p.is_active() && p.magnitude.is_finite() && p.frequency.is_finite()) {
+    let p = p.clamped();
+    if !p.is_active() {
         return Vec3::ZERO;
     }
-    let m = p.magnitude.clamp(0.0, 1.0);
-    let f = p.frequency.clamp(0.0, crate::wind::MAX_PULSE_FREQUENCY);
     let phase = if age.is_finite() {
-        (age * f64::from(f)).rem_euclid(1.0) as f32
+        (age * f64::from(p.frequency)).rem_euclid(1.0) as f32
     } else {
         0.0
     };
-    Vec3::new(m, f, phase)
+    Vec3::new(p.magnitude, p.frequency, phase)
 }
 
 fn quat(q: bevy::math::Quat) -> Vec4 {

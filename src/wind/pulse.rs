@@ -73,20 +73,23 @@ impl Pulse {
         self.magnitude > 0.0 && self.frequency > 0.0
     }
 
-    /// The strength factor at wind time `time` s: `1 + m sin(2π f t)`, with m clamped to [0, 1]
-    /// and f to [0, [`MAX_PULSE_FREQUENCY`]] (a non-finite one counts as 0), so it is finite and
-    /// ≥ 0 for every input.
+    /// This pulse with its magnitude clamped to [0, 1] and its frequency to
+    /// [0, [`MAX_PULSE_FREQUENCY`]] (a non-finite value counts as 0): what [`Self::factor`] uses.
+    pub fn clamped(&self) -> Self {
+        let clamp = |v: f32, hi: f32| if v.is_finite() { v.clamp(0.0, hi) } else { 0.0 };
+        Self::new(
+            clamp(self.magnitude, 1.0),
+            clamp(self.frequency, MAX_PULSE_FREQUENCY),
+        )
+    }
+
+    /// The strength factor at wind time `time` s: `1 + m sin(2π f t)` of [`Self::clamped`], so it
+    /// is finite and ≥ 0 for every input.
     pub fn factor(&self, time: f64) -> f32 {
-        let m = if self.magnitude.is_finite() {
-            self.magnitude.clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let f = if self.frequency.is_finite() {
-            self.frequency.clamp(0.0, MAX_PULSE_FREQUENCY)
-        } else {
-            0.0
-        };
+        let Self {
+            magnitude: m,
+            frequency: f,
+        } = self.clamped();
         if m == 0.0 || f == 0.0 || !time.is_finite() {
             return 1.0;
         }

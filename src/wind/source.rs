@@ -14,7 +14,7 @@ use bevy::transform::components::Transform;
 use std::f32::consts::FRAC_PI_2;
 
 use super::config::WindError;
-use super::pulse::{MAX_PULSE_FREQUENCY, Pulse};
+use super::pulse::Pulse;
 
 /// What a [`WindSource`] blows, in metres and m/s.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -149,8 +149,7 @@ impl WindSource {
     /// [0, 1]) `frequency` times a second (clamped to [0, 100] Hz; non-finite values become 0),
     /// like Unity's WindZone pulse. The mean over a period is unchanged.
     pub fn with_pulse(mut self, magnitude: f32, frequency: f32) -> Self {
-        let clamp = |v: f32, hi: f32| if v.is_finite() { v.clamp(0.0, hi) } else { 0.0 };
-        self.pulse = Pulse::new(clamp(magnitude, 1.0), clamp(frequency, MAX_PULSE_FREQUENCY));
+        self.pulse = Pulse::new(magnitude, frequency).clamped();
         self
     }
 
