@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use bevy::math::{Vec2, Vec3};
-use bevy_windfall::spectrum::FftBackend;
+use bevy_windfall::spectrum::{FftBackend, Synthesizer};
 use bevy_windfall::wind::{
     SpatialMode, TemporalMode, WindConfig, WindField, WindPlugin, WindSource,
 };
@@ -120,6 +120,14 @@ fn generation(c: &mut Criterion) {
                 b.iter(|| WindField::new(black_box(config.clone())).unwrap())
             });
         }
+        // The first field of a grid: the amplitude table and the FFT plans made afresh (what
+        // `WindField::new` costs before `Synthesizer::shared` has the grid).
+        group.bench_function(BenchmarkId::new("windfall_portable_first", name), |b| {
+            b.iter(|| {
+                let synth = Synthesizer::new(&dims, 5.0 / 3.0, FftBackend::Portable).unwrap();
+                black_box((synth.pair(1), synth.field(2)))
+            })
+        });
         let len: usize = dims.iter().product();
         for (label, simd) in [("rustfft_simd_x3", true), ("rustfft_scalar_x3", false)] {
             let bare = BareInverse::new(&dims, simd);

@@ -31,6 +31,12 @@ pub(crate) fn unit_vec3(v: Vec3) -> Option<Vec3> {
 /// `v` shortened to at most `max` long (overflow-safe: any finite `v`, even with components
 /// near `f32::MAX`); zero for a non-finite `v`.
 pub(crate) fn clamp_length(v: Vec3, max: f32) -> Vec3 {
+    // The usual case, with no division: a finite vector whose squared length neither
+    // underflows nor passes max².
+    let squared = v.length_squared();
+    if squared > 0.0 && squared <= max * max {
+        return v;
+    }
     let Some(unit) = unit_vec3(v) else {
         return Vec3::ZERO;
     };

@@ -83,6 +83,12 @@
 //! it through its own response time (§4.3). [`FallState`](freefall::FallState) tells its
 //! motion; [`Landed`](freefall::Landed) is sent when it reaches the ground.
 //!
+//! For storms of them, a [`LeafCloud`](freefall::LeafCloud) holds up to millions of leaves of one
+//! description in one entity: each the same fall, stored in one array, stepped in parallel with
+//! the same bits on any thread count, with levels of detail around a
+//! [`LodFocus`](freefall::LodFocus) and (feature `render`) one draw call
+//! (`gpu::LeafCloudRenderPlugin`).
+//!
 //! # Cloth
 //!
 //! [`Cloth`](cloth::Cloth): flags, banners and curtains whose yarns are P-type Fourier
@@ -280,6 +286,7 @@ impl PluginGroup for WindfallPluginsIn {
             .add(WindfallSchedulePlugin(self.schedule))
             .add(wind::WindPlugin::default())
             .add(freefall::FreeFallPlugin)
+            .add(freefall::LeafCloudPlugin)
             .add(aero::AeroPlugin)
             .add(cloth::ClothPlugin)
     }

@@ -9,7 +9,8 @@ use std::fs::File;
 use std::path::{Path, PathBuf};
 
 /// The screenshots CI takes: the showcase's four scenes (and its banner and curtain, and the
-/// leaves scene's meadow of GPU-swayed grass), the wind and aero scenes.
+/// leaves scene's meadow of GPU-swayed grass), the wind and aero scenes. The leaves scene must
+/// also show its storm (a leaf cloud).
 const EXPECTED: [&str; 9] = [
     "meadow.png",
     "showcase_leaves.png",
@@ -142,6 +143,33 @@ fn grass_reason(frame: &Frame) -> Option<String> {
     })
 }
 
+/// The storm of the leaves scene: specks of leaf colour (red above blue) in the sky right of the
+/// trunk, clear of the panel, counted as runs of warm pixels per 1000 pixels. The storm's cloud
+/// gives 15–23 there (many small leaves far off); the 600 featured leaves alone about 1 (a few
+/// large ones near the tree).
+fn storm_specks(frame: &Frame) -> f64 {
+    let (w, h) = (frame.width, frame.height);
+    let (mut runs, mut n) = (0usize, 0usize);
+    for y in (h * 30 / 100)..(h * 75 / 100) {
+        let mut previous = false;
+        for x in (w * 30 / 100)..(w * 65 / 100) {
+            let p = frame.rgb[y * w + x];
+            let warm = i32::from(p[0]) > i32::from(p[2]) + 25;
+            runs += usize::from(warm && !previous);
+            previous = warm;
+            n += 1;
+        }
+    }
+    1000.0 * runs as f64 / n.max(1) as f64
+}
+
+/// Why the leaves scene shows no storm, if it does not.
+fn storm_reason(frame: &Frame) -> Option<String> {
+    let specks = storm_specks(frame);
+    (specks < 5.0)
+        .then(|| format!("no leaf storm: {specks:.1} leaf specks per 1000 sky pixels (≥ 5)"))
+}
+
 /// A synthetic 320 × 180 frame: `f(x, y)` per pixel.
 fn synthetic(f: impl Fn(usize, usize) -> [u8; 3]) -> Frame {
     let (width, height) = (320, 180);
@@ -197,6 +225,23 @@ fn the_checker_rejects_blank_frames_and_accepts_a_scene() {
         [60 + shade, 110 + shade, 40]
     });
     assert_eq!(grass_reason(&blades), None);
+    // A sky with a few large leaves is no storm; one speckled with small leaves (2 %) is.
+    let few = synthetic(|x, y| {
+        if (x % 80 < 12) && (60..72).contains(&y) {
+            [200, 90, 30]
+        } else {
+            [150, 190, 220]
+        }
+    });
+    assert!(storm_reason(&few).is_some());
+    let storm = synthetic(|x, y| {
+        if (x * 13 + y * 7) % 100 < 2 {
+            [200, 90, 30]
+        } else {
+            [150, 190, 220]
+        }
+    });
+    assert_eq!(storm_reason(&storm), None);
 }
 
 #[test]
@@ -217,6 +262,15 @@ fn every_example_screenshot_shows_its_scene() {
                 println!("{name}: grass measures {green:.2} green, detail {detail:.1}");
                 if name == "meadow.png"
                     && let Some(reason) = grass_reason(&frame)
+                {
+                    failures.push(format!("{name}: {reason}"));
+                }
+                println!(
+                    "{name}: {:.1} leaf specks per 1000 sky pixels",
+                    storm_specks(&frame)
+                );
+                if name == "showcase_leaves.png"
+                    && let Some(reason) = storm_reason(&frame)
                 {
                     failures.push(format!("{name}: {reason}"));
                 }

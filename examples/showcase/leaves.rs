@@ -1,12 +1,16 @@
 //! Autumn leaves fall from a tree into gusty wind, land, rest and fall again. Most are
 //! procedural [`FallingObject`]s of four kinds (maple, oak, birch and the paper's leaf, each a
 //! [`FallPreset`] with its own Markov chain); a few yellow-green ones are physical [`AeroBody`]
-//! plates with per-face lift and drag. The camera stands by the trunk, where leaves pass close.
+//! plates with per-face lift and drag. Behind them a storm of [`STORM`] more leaves blows across
+//! the meadow: one [`LeafCloud`] entity, stepped in parallel chunks and drawn in one draw call.
+//! The camera stands by the trunk, where leaves pass close.
 
 use bevy::prelude::*;
 use bevy_windfall::aero::{AeroState, PlateState};
-use bevy_windfall::freefall::{FallPreset, FallRng, PrimitiveMotion};
-use bevy_windfall::gpu::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
+use bevy_windfall::freefall::{
+    CloudLod, CloudRegion, FallPreset, FallRng, LeafCloud, LeafCloudState, PrimitiveMotion,
+};
+use bevy_windfall::gpu::{LeafCloudLook, SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::WindSource;
 
@@ -15,6 +19,8 @@ use super::population::{CANOPY, Canopy, KINDS, LEAVES, leaf};
 use super::{Featured, Scene, SceneInfo, common, place_camera};
 
 const PHYSICAL_LEAVES: usize = 30;
+/// Leaves in the background storm (a [`LeafCloud`]).
+pub const STORM: u32 = 24_000;
 /// Seconds a leaf rests on the ground before it is released again: at least this, and up to
 /// twice as long (drawn per landing, so the leaves do not fall in waves).
 const REST: f32 = 2.0;
@@ -315,6 +321,25 @@ fn setup(
             entity.insert((Featured, Name::new("featured leaf")));
         }
     }
+    // The storm: leaves blowing across the meadow round and behind the tree, each let go again
+    // from 16 m up a few seconds after it lands. The camera is the cloud's level-of-detail focus
+    // (see `main.rs`): leaves beyond 25 m are stepped every second step, beyond 60 m every fourth.
+    commands.spawn((
+        LeafCloud {
+            object: FallPreset::MapleLeaf.object(),
+            count: STORM,
+            seed: 11,
+            region: CloudRegion {
+                min: Vec3::new(-36.0, 0.5, -40.0),
+                max: Vec3::new(24.0, 16.0, 8.0),
+            },
+            lod: CloudLod::default(),
+            recycle_after: Some(3.0),
+        },
+        LeafCloudLook::default(),
+        Name::new("storm"),
+        here.clone(),
+    ));
     commands.spawn((
         WindSource::vortex(2.4, 5.0).with_updraft(2.5),
         Transform::from_translation(devil_at(0.0)),
@@ -380,6 +405,7 @@ fn respawn_physical(mut bodies: Query<&mut AeroState>, mut spawner: ResMut<Spawn
 
 fn show_info(
     falls: Query<&FallState>,
+    storm: Query<&LeafCloudState>,
     featured: Single<(&FallingObject, &FallState), With<Featured>>,
     mut info: ResMut<SceneInfo>,
 ) {
@@ -392,8 +418,14 @@ fn show_info(
             counts[m.index()] += 1;
         }
     }
+    let storm_down = storm
+        .iter()
+        .filter_map(LeafCloudState::leaves)
+        .map(|l| l.resting())
+        .sum::<usize>();
     let mut line = format!(
-        "{LEAVES} leaves: maple, oak, birch, the paper's; {PHYSICAL_LEAVES} physical plates (green)\n"
+        "{LEAVES} leaves: maple, oak, birch, the paper's; {PHYSICAL_LEAVES} physical plates (green); \
+         storm: {STORM} leaves in one cloud ({storm_down} down)\n"
     );
     let (object, state) = *featured;
     if let Some(r) = state.regime() {

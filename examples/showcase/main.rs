@@ -112,6 +112,7 @@ fn main() {
         FrameTimeDiagnosticsPlugin::default(),
         WindfallDebugPlugin,
         bevy_windfall::gpu::WindGpuPlugin,
+        bevy_windfall::gpu::LeafCloudRenderPlugin,
     ))
     .insert_state(start)
     .init_resource::<SceneInfo>()
@@ -143,7 +144,9 @@ fn main() {
     };
     store.config_mut::<FallGizmos>().0.enabled = paths;
     store.config_mut::<ClothGizmos>().0.enabled = paths;
-    app.world_mut().spawn(Camera3d::default());
+    // The focus of the leaf clouds' levels of detail.
+    app.world_mut()
+        .spawn((Camera3d::default(), bevy_windfall::freefall::LodFocus));
     app.world_mut().spawn((Hud, common::info_text()));
     app.run();
 }

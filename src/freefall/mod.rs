@@ -12,6 +12,7 @@
 //! | Markov chain | L_i → L_j, j ≥ i, bounded by the main motion, per object | §3, eq. 9 |
 //! | wind | p ← p + v dt + Δf, v relaxing to u(p) over a response time; tilt θ = W N(t) | §4.2, eq. 15 |
 //! | presets | coin, paper, leaves, card, samara with their chains | [`FallPreset`] |
+//! | clouds | 100 000 leaves in one entity, levels of detail | [`LeafCloud`] ([`cloud`]) |
 //!
 //! | quantity | unit |
 //! |---|---|
@@ -24,6 +25,7 @@
 //! The math is in plain types ([`regime()`], [`TrajectoryDatabase`], [`FallPath`], [`ode`]);
 //! [`FreeFallPlugin`] moves every [`FallingObject`] on the fixed timestep.
 
+pub mod cloud;
 mod database;
 #[cfg(feature = "gizmos")]
 mod gizmos;
@@ -39,6 +41,9 @@ mod regime;
 mod release;
 mod tilt;
 
+pub use cloud::{
+    CloudLod, CloudRegion, LeafCloud, LeafCloudInvalid, LeafCloudPlugin, LeafCloudState, LodFocus,
+};
 pub use database::{
     CANDIDATES, DatabaseConfig, FEATURES, Feature, MAX_DATABASE_PARAMETER, SEGMENT_SAMPLES,
     Segment, TrajectoryDatabase,

@@ -32,8 +32,9 @@ impl WindTilt {
         if !(horizontal > 1e-6 && speed.is_finite() && self.max_angle.is_finite()) {
             return Quat::IDENTITY;
         }
-        let ratio = speed / self.reference_speed.max(1e-3);
-        let half = 0.5 * factor * self.max_angle.clamp(-PI, PI) * (ratio / (1.0 + ratio));
+        // N = x / (1 + x) with x = |u| / U_ref, as |u| / (U_ref + |u|): one division.
+        let n = speed / (self.reference_speed.max(1e-3) + speed);
+        let half = 0.5 * factor * self.max_angle.clamp(-PI, PI) * n;
         // Axis Y × horizontal = (z, 0, −x) / |horizontal|.
         let (sin, cos) = sin_cos_quarter_turn(half);
         let k = sin / horizontal;

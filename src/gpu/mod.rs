@@ -21,13 +21,22 @@
 //! let soon = wind_velocity_at(world_position, 0.5); // half a second of wind time later
 //! ```
 //!
+//! [`LeafCloudRenderPlugin`] draws every [`LeafCloud`](crate::freefall::LeafCloud) in one draw
+//! call: a mesh of all its leaves whose vertex shader reads each leaf's pose from a storage
+//! buffer (`cloud.wgsl`).
+//!
 //! Time in the shader is relative to the uploaded clock (`dt`, seconds): everything that grows
 //! with the clock is reduced on the CPU in f64, so f32 on the GPU stays as exact as the CPU
 //! after hours of play. `tests/gpu_wind.rs` checks the GPU against the CPU at thousands of points.
 
+mod cloud;
 mod params;
 mod sway;
 
+pub use cloud::{
+    CloudPoses, LeafCloudLook, LeafCloudMaterial, LeafCloudRenderPlugin, LeafCloudVisual,
+    POSE_BYTES, cloud_mesh,
+};
 pub use params::{GpuLocal, GpuWindParams, MAX_GPU_LOCALS, node_bytes};
 pub use sway::{SwaySettings, WindSway, WindSwayMaterial};
 

@@ -34,4 +34,7 @@ pub use fft::FftBackend;
 pub use grid::GridShape;
 pub(crate) use sample::periodic_lerp;
 pub use sample::periodic_lerp_2d;
-pub use synth::{MAX_NODES, SpectrumError, Synthesizer, fbm, fbm_pair, try_fbm, try_fbm_pair};
+pub use synth::{
+    CACHED_SYNTHESIZERS, MAX_NODES, SpectrumError, Synthesizer, fbm, fbm_pair, try_fbm,
+    try_fbm_pair,
+};

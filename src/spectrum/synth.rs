@@ -1,5 +1,7 @@
 //! Synthesis of 1/f^β fields: shaped Hermitian spectrum, inverse FFT, normalisation.
 
+use std::sync::{Arc, Mutex};
+
 use rustfft::num_complex::Complex;
 use thiserror::Error;
 
@@ -101,6 +103,14 @@ fn validate(dims: &[usize], beta: f32) -> Result<(), SpectrumError> {
     Ok(())
 }
 
+/// How many synthesizers [`Synthesizer::shared`] keeps (most recently used first).
+pub const CACHED_SYNTHESIZERS: usize = 4;
+
+/// The key of a shared synthesizer: dims, β's bits, backend.
+type SharedKey = (Vec<usize>, u32, FftBackend);
+
+static SHARED: Mutex<Vec<(SharedKey, Arc<Synthesizer>)>> = Mutex::new(Vec::new());
+
 /// Makes real, periodic, zero-mean, unit-variance 1/f^β fields of one shape and β. Building it
 /// tabulates the spectral amplitudes and plans the transforms once; reuse it for many seeds.
 pub struct Synthesizer {
@@ -131,6 +141,37 @@ impl Synthesizer {
             table,
             mirror_offsets,
         })
+    }
+
+    /// A shared synthesizer for `dims`, `beta` and `backend`: the last [`CACHED_SYNTHESIZERS`]
+    /// made this way are kept, so rebuilding a field of the same grid and β (a new seed, a new
+    /// speed, a rebuilt wind) skips the amplitude table and the FFT planning, which are most of
+    /// a small field's cost. The table and plans depend only on the key: the fields are the same
+    /// bits either way.
+    ///
+    /// # Errors
+    /// As [`Synthesizer::new`].
+    pub fn shared(
+        dims: &[usize],
+        beta: f32,
+        backend: FftBackend,
+    ) -> Result<Arc<Self>, SpectrumError> {
+        validate(dims, beta)?;
+        let key = (dims.to_vec(), beta.to_bits(), backend);
+        let mut cache = SHARED
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some(i) = cache.iter().position(|(k, _)| *k == key) {
+            let hit = cache.remove(i);
+            let synth = Arc::clone(&hit.1);
+            cache.insert(0, hit);
+            return Ok(synth);
+        }
+        // Built under the lock: two threads asking for the same key build it once.
+        let synth = Arc::new(Self::new(dims, beta, backend)?);
+        cache.insert(0, (key, Arc::clone(&synth)));
+        cache.truncate(CACHED_SYNTHESIZERS);
+        Ok(synth)
     }
 
     /// Nodes per axis.

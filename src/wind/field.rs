@@ -98,12 +98,14 @@ static GENERATIONS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64:
 
 impl WindField {
     /// Builds the field: validates `config`, then synthesises the three turbulence components
-    /// (two in one complex FFT, see [`Synthesizer::pair`]).
+    /// (two in one complex FFT, see [`Synthesizer::pair`]). The amplitude table and FFT plans of
+    /// recent grids are kept ([`Synthesizer::shared`]), so a rebuild costs the random spectrum
+    /// and the transforms.
     pub fn new(config: WindConfig) -> Result<Self, WindError> {
         validate_extra(&config)?;
         let dims = grid_dims(&config);
         let shape = GridShape::new(&dims);
-        let synth = Synthesizer::new(&dims, config.beta, config.fft).map_err(|e| match e {
+        let synth = Synthesizer::shared(&dims, config.beta, config.fft).map_err(|e| match e {
             SpectrumError::Beta(beta) => WindError::Invalid {
                 field: "beta",
                 value: beta,

@@ -1,0 +1,122 @@
+//! Cost of one fixed step of 100 000 leaves in a [`LeafCloud`], against 100 000 bare drag
+//! particles in the same wind stepped the same way (the same thread pool, the same chunks):
+//! v += (g + c |u − v| (u − v)) dt, x += v dt. Also the cost of posing the cloud for drawing and
+//! what levels of detail save.
+//!
+//! Run: `cargo bench --bench cloud`. Figures are in the README's Performance section.
+
+use std::time::Duration;
+
+use bevy::math::Vec3;
+use bevy::tasks::{ParallelSliceMut, TaskPool, TaskPoolBuilder};
+use bevy_windfall::freefall::cloud::{CLOUD_CHUNK, CloudLeaves, CloudStep};
+use bevy_windfall::freefall::{CloudLod, CloudRegion, FallModel, LeafCloud, WindTilt};
+use bevy_windfall::wind::{WindConfig, WindField};
+use criterion::{BatchSize, Criterion, criterion_main};
+
+const LEAVES: u32 = 100_000;
+const DT: f32 = 1.0 / 60.0;
+
+fn storm(lod: CloudLod) -> LeafCloud {
+    LeafCloud {
+        count: LEAVES,
+        seed: 7,
+        region: CloudRegion {
+            min: Vec3::new(-100.0, 2.0, -100.0),
+            max: Vec3::new(100.0, 30.0, 100.0),
+        },
+        lod,
+        ..LeafCloud::default()
+    }
+}
+
+/// The cloud after two seconds of falling (motions under way, blends and pieces mixed).
+fn warmed(model: &FallModel, wind: &WindField, lod: CloudLod, pool: &TaskPool) -> CloudLeaves {
+    // Far below: every leaf is in the air for the whole run (the costly case).
+    let mut leaves = storm(lod).leaves(model, -1.0e5).unwrap();
+    for _ in 0..120 {
+        leaves.step(
+            &step(model, wind, Some(Vec3::new(0.0, 2.0, -100.0))),
+            Some(pool),
+        );
+    }
+    leaves
+}
+
+fn step<'a>(model: &'a FallModel, wind: &'a WindField, focus: Option<Vec3>) -> CloudStep<'a> {
+    CloudStep {
+        model,
+        wind: Some(wind),
+        dt: DT,
+        tilt: WindTilt {
+            max_angle: 0.6,
+            reference_speed: wind.config().reference_speed,
+        },
+        focus,
+    }
+}
+
+/// The baseline: explicit drag particles, chunked on the same pool.
+fn drag_particles(mut particles: &mut [(Vec3, Vec3)], wind: &WindField, pool: &TaskPool) {
+    let c = 0.5 * 1.2 * 1.2 * 2.4e-3 / 3.6e-4; // ½ ρ C_D A / m for the default leaf
+    particles.par_chunk_map_mut(pool, CLOUD_CHUNK, |_, chunk| {
+        for (x, v) in chunk.iter_mut() {
+            let relative = wind.velocity(*x) - *v;
+            *v += (Vec3::new(0.0, -9.81, 0.0) + c * relative.length() * relative) * DT;
+            *x += *v * DT;
+        }
+    });
+}
+
+fn cloud(c: &mut Criterion) {
+    let pool = TaskPoolBuilder::new().num_threads(2).build();
+    let model = FallModel::default();
+    let wind = WindField::new(WindConfig::default()).unwrap();
+    let full = warmed(&model, &wind, CloudLod::FULL, &pool);
+    println!(
+        "cloud: {} bytes a leaf ({} of them a FallPath)",
+        full.memory_bytes() / full.len(),
+        std::mem::size_of::<bevy_windfall::freefall::FallPath>()
+    );
+    let mut group = c.benchmark_group("cloud_step_100k");
+    group
+        .sample_size(20)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(4));
+    group.bench_function("leaf_cloud_with_wind", |b| {
+        b.iter_batched_ref(
+            || full.clone(),
+            |leaves| leaves.step(&step(&model, &wind, None), Some(&pool)),
+            BatchSize::LargeInput,
+        )
+    });
+    let particles: Vec<(Vec3, Vec3)> = full.paths().map(|p| (p.position(), p.drift())).collect();
+    group.bench_function("baseline_drag_particles_with_wind", |b| {
+        b.iter_batched_ref(
+            || particles.clone(),
+            |p| drag_particles(p, &wind, &pool),
+            BatchSize::LargeInput,
+        )
+    });
+    // The camera at one edge of the 200 m square: near leaves every step, the rest less often.
+    let focus = Some(Vec3::new(0.0, 2.0, -100.0));
+    let tiered = warmed(&model, &wind, CloudLod::default(), &pool);
+    group.bench_function("leaf_cloud_with_wind_lod", |b| {
+        b.iter_batched_ref(
+            || tiered.clone(),
+            |leaves| leaves.step(&step(&model, &wind, focus), Some(&pool)),
+            BatchSize::LargeInput,
+        )
+    });
+    let mut poses = Vec::new();
+    group.bench_function("poses_for_drawing", |b| {
+        b.iter(|| full.poses(0.5, DT, Some(&pool), &mut poses))
+    });
+    group.finish();
+}
+
+#[allow(missing_docs)]
+mod group {
+    criterion::criterion_group!(benches, super::cloud);
+}
+criterion_main!(group::benches);

@@ -1,0 +1,431 @@
+//! The state of a leaf cloud: one [`FallPath`] per leaf in a contiguous array, stepped in
+//! parallel chunks, with levels of detail by distance. Pure math: no ECS.
+
+use std::sync::Arc;
+
+use bevy::math::{Quat, Vec3};
+use bevy::tasks::{ParallelSliceMut, TaskPool};
+
+use super::{CloudLod, CloudRegion};
+use crate::freefall::markov::BoundedChain;
+use crate::freefall::model::FallModel;
+use crate::freefall::motion::FallScales;
+use crate::freefall::path::{FallPath, StepOutcome, WindTilt};
+use crate::freefall::random::FallRng;
+use crate::freefall::release::FallRelease;
+use crate::wind::WindField;
+
+/// Leaves a parallel task steps together: big enough that the task costs little beside its
+/// work (≈ 50 µs), small enough that two threads share the work of a few thousand leaves.
+pub const CLOUD_CHUNK: usize = 512;
+
+/// One leaf: its fall and when it was last stepped.
+#[derive(Clone, Debug)]
+struct Leaf {
+    path: FallPath,
+    /// The cloud's clock at the leaf's last step, s.
+    updated: f64,
+    /// Seconds the last step covered (one to four fixed steps, by its tier).
+    span: f32,
+    /// Seconds on the ground since it landed.
+    resting: f32,
+    /// Times it was let go (its first release counts).
+    releases: u32,
+    /// Set when a step came sooner than the one before it (a change to a finer tier): what
+    /// was shown then, eased out so the shown pose never jumps.
+    /// (Boxed: rare, and the leaves stream through the cache every step.)
+    from: Option<Box<Easing>>,
+}
+
+/// The shown pose's offset from the path when a leaf was stepped, eased out over `length`.
+#[derive(Clone, Copy, Debug)]
+struct Easing {
+    offset: Vec3,
+    /// The rotation shown then.
+    rotation: Quat,
+    start: f64,
+    length: f32,
+}
+
+impl Leaf {
+    /// The share of its last step's span that has passed at `now`, in [0, 1].
+    fn share(&self, now: f64) -> f32 {
+        if self.span > 0.0 {
+            ((now - self.updated) as f32 / self.span).clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
+    }
+
+    /// The pose shown at `now`: the path's Bézier at the share of the span that has passed,
+    /// plus what is left of an [`Easing`].
+    fn shown(&self, now: f64) -> LeafPose {
+        let (position, rotation) = self.path.smoothed(self.share(now));
+        match self.from.as_deref() {
+            Some(e) => {
+                let done = ((now - e.start) as f32 / e.length.max(1e-6)).clamp(0.0, 1.0);
+                LeafPose {
+                    position: position + e.offset * (1.0 - done),
+                    rotation: e.rotation.lerp(rotation, done),
+                }
+            }
+            None => LeafPose { position, rotation },
+        }
+    }
+}
+
+/// What one [`CloudLeaves::step`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CloudStepReport {
+    /// Leaves advanced in this step (the others wait for their tier's turn).
+    pub advanced: usize,
+    /// Leaves that reached the ground in this step.
+    pub landed: usize,
+    /// Leaves let go again from the top of the region ([`LeafCloud::recycle_after`]).
+    ///
+    /// [`LeafCloud::recycle_after`]: super::LeafCloud::recycle_after
+    pub recycled: usize,
+}
+
+/// Everything one step of a cloud reads.
+#[derive(Clone, Copy, Debug)]
+pub struct CloudStep<'a> {
+    /// The trajectory database and chain.
+    pub model: &'a FallModel,
+    /// The wind (`None`: still air).
+    pub wind: Option<&'a WindField>,
+    /// The fixed step, s.
+    pub dt: f32,
+    /// The wind's turn of eq. 15.
+    pub tilt: WindTilt,
+    /// Where the levels of detail are measured from (the camera); `None`: every leaf at full
+    /// detail.
+    pub focus: Option<Vec3>,
+}
+
+/// A shown pose: position and orientation, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LeafPose {
+    /// Where the leaf is, m.
+    pub position: Vec3,
+    /// How it is turned (the plate in its local XZ plane, long axis local Z).
+    pub rotation: Quat,
+}
+
+/// The leaves of one cloud (see [`LeafCloud`](super::LeafCloud)): built by
+/// [`CloudLeaves::new`], stepped by [`CloudLeaves::step`], shown by [`CloudLeaves::poses`].
+#[derive(Clone, Debug)]
+pub struct CloudLeaves {
+    leaves: Vec<Leaf>,
+    scales: FallScales,
+    chain: Arc<BoundedChain>,
+    seed: u64,
+    region: CloudRegion,
+    ground: f32,
+    lod: CloudLod,
+    recycle_after: Option<f32>,
+    /// Seconds stepped, summed in f64.
+    clock: f64,
+    /// Fixed steps taken.
+    steps: u64,
+    /// Leaves on the ground.
+    resting: usize,
+}
+
+impl CloudLeaves {
+    /// `count` leaves with the sizes `scales` and the chain `chain`, each let go at rest at a
+    /// point of `region` drawn from its own stream (the cloud's `seed` mixed with its index),
+    /// turned at random, above `ground`. The rest of the description: `lod`, and
+    /// `recycle_after` (a leaf resting that long is let go again from the region's top).
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        model: &FallModel,
+        scales: FallScales,
+        chain: Arc<BoundedChain>,
+        count: usize,
+        seed: u64,
+        region: CloudRegion,
+        ground: f32,
+        lod: CloudLod,
+        recycle_after: Option<f32>,
+    ) -> Self {
+        let mut cloud = Self {
+            leaves: Vec::with_capacity(count),
+            scales,
+            chain,
+            seed,
+            region,
+            ground,
+            lod,
+            recycle_after,
+            clock: 0.0,
+            steps: 0,
+            resting: 0,
+        };
+        for index in 0..count {
+            let path = cloud.release(model, index, 0, false);
+            cloud.leaves.push(Leaf {
+                path,
+                updated: 0.0,
+                span: 0.0,
+                resting: 0.0,
+                releases: 1,
+                from: None,
+            });
+        }
+        cloud
+    }
+
+    /// The `release`-th fall of leaf `index`: anywhere in the region (`top`: at its top), turned
+    /// at random, from a stream that depends only on the seed, the index and the release.
+    fn release(&self, model: &FallModel, index: usize, release: u32, top: bool) -> FallPath {
+        let mut rng = FallRng::new(leaf_seed(self.seed, index, release));
+        let (min, max) = (self.region.min, self.region.max);
+        let mut position =
+            min + (max - min) * Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+        if top {
+            position.y = max.y;
+        }
+        let axis = Vec3::new(rng.normal(), rng.normal(), rng.normal());
+        let rotation = Quat::from_axis_angle(
+            axis.try_normalize().unwrap_or(Vec3::Y),
+            rng.uniform() * std::f32::consts::TAU,
+        );
+        FallPath::release(
+            model,
+            self.scales,
+            Arc::clone(&self.chain),
+            rng.bits(),
+            FallRelease {
+                position,
+                rotation: Some(rotation),
+                velocity: Vec3::ZERO,
+                ground: self.ground,
+            },
+        )
+    }
+
+    /// Advances the cloud by one fixed step `step.dt`: every leaf whose tier is due (see
+    /// [`CloudLod`]) is advanced over the time since its last step, in the wind where it is,
+    /// exactly as a single [`FallingObject`](crate::freefall::FallingObject) is. The leaves are
+    /// independent, so the chunks run on `pool`'s threads (`None`: this thread) and the result
+    /// is the same bits for any number of threads.
+    pub fn step(&mut self, step: &CloudStep, pool: Option<&TaskPool>) -> CloudStepReport {
+        let dt = if step.dt.is_finite() {
+            step.dt.clamp(0.0, crate::freefall::MAX_STEP)
+        } else {
+            0.0
+        };
+        self.clock += f64::from(dt);
+        self.steps += 1;
+        let ctx = ChunkContext {
+            step,
+            clock: self.clock,
+            steps: self.steps,
+            lod: self.lod,
+            recycle_after: self.recycle_after,
+        };
+        let reports: Vec<ChunkReport> = match pool {
+            Some(pool) if self.leaves.len() > CLOUD_CHUNK => {
+                self.leaves
+                    .par_chunk_map_mut(pool, CLOUD_CHUNK, |c, chunk| {
+                        step_chunk(chunk, c * CLOUD_CHUNK, &ctx)
+                    })
+            }
+            _ => self
+                .leaves
+                .chunks_mut(CLOUD_CHUNK)
+                .enumerate()
+                .map(|(c, chunk)| step_chunk(chunk, c * CLOUD_CHUNK, &ctx))
+                .collect(),
+        };
+        let mut report = CloudStepReport::default();
+        let mut due = Vec::new();
+        self.resting = 0;
+        for (chunk, r) in reports.into_iter().enumerate() {
+            report.advanced += r.advanced;
+            report.landed += r.landed;
+            self.resting += r.resting;
+            due.extend(
+                r.recycle
+                    .into_iter()
+                    .map(|i| chunk * CLOUD_CHUNK + i as usize),
+            );
+        }
+        // Let go again, in index order (each from its own stream: order changes nothing).
+        for index in due {
+            let releases = self.leaves[index].releases;
+            let path = self.release(step.model, index, releases, true);
+            let leaf = &mut self.leaves[index];
+            leaf.path = path;
+            leaf.releases += 1;
+            leaf.resting = 0.0;
+            leaf.span = 0.0;
+            leaf.updated = self.clock;
+            leaf.from = None;
+            report.recycled += 1;
+            self.resting -= 1;
+        }
+        report
+    }
+
+    /// The shown poses, `overstep` ∈ [0, 1] of a fixed step after the last one: each leaf on the
+    /// Bézier between its last two control points ([`FallPath::smoothed`]), at the share of its
+    /// last step's span that has passed, so a leaf stepped every fourth step moves as smoothly
+    /// as one stepped every step and a change of tier never jumps. `out` is resized to the
+    /// leaves.
+    pub fn poses(&self, overstep: f32, dt: f32, pool: Option<&TaskPool>, out: &mut Vec<LeafPose>) {
+        let now = self.clock + f64::from(overstep.clamp(0.0, 1.0) * dt.max(0.0));
+        out.resize(
+            self.leaves.len(),
+            LeafPose {
+                position: Vec3::ZERO,
+                rotation: Quat::IDENTITY,
+            },
+        );
+        let pose = |leaf: &Leaf| leaf.shown(now);
+        match pool {
+            Some(pool) if self.leaves.len() > CLOUD_CHUNK => {
+                let leaves = &self.leaves;
+                out.par_chunk_map_mut(pool, CLOUD_CHUNK, |c, poses| {
+                    let first = c * CLOUD_CHUNK;
+                    for (i, p) in poses.iter_mut().enumerate() {
+                        *p = pose(&leaves[first + i]);
+                    }
+                });
+            }
+            _ => {
+                for (p, leaf) in out.iter_mut().zip(&self.leaves) {
+                    *p = pose(leaf);
+                }
+            }
+        }
+    }
+
+    /// Bytes the leaves take (their array; a leaf easing after a change of tier holds 48 more,
+    /// a leaf blending a motion change a few more on the heap).
+    pub fn memory_bytes(&self) -> usize {
+        self.leaves.capacity() * std::mem::size_of::<Leaf>()
+    }
+
+    /// How many leaves.
+    pub fn len(&self) -> usize {
+        self.leaves.len()
+    }
+
+    /// True for a cloud of no leaves.
+    pub fn is_empty(&self) -> bool {
+        self.leaves.is_empty()
+    }
+
+    /// Leaf `index`'s fall.
+    pub fn path(&self, index: usize) -> Option<&FallPath> {
+        self.leaves.get(index).map(|l| &l.path)
+    }
+
+    /// Every leaf's fall, in order.
+    pub fn paths(&self) -> impl ExactSizeIterator<Item = &FallPath> {
+        self.leaves.iter().map(|l| &l.path)
+    }
+
+    /// Leaves on the ground after the last step.
+    pub fn resting(&self) -> usize {
+        self.resting
+    }
+
+    /// Seconds stepped.
+    pub fn clock(&self) -> f64 {
+        self.clock
+    }
+
+    /// The sizes every leaf shares.
+    pub fn scales(&self) -> &FallScales {
+        &self.scales
+    }
+}
+
+/// What the chunks of one step share.
+struct ChunkContext<'a> {
+    step: &'a CloudStep<'a>,
+    clock: f64,
+    steps: u64,
+    lod: CloudLod,
+    recycle_after: Option<f32>,
+}
+
+#[derive(Default)]
+struct ChunkReport {
+    advanced: usize,
+    landed: usize,
+    /// Leaves on the ground after the step.
+    resting: usize,
+    /// Indices within the chunk of leaves to let go again.
+    recycle: Vec<u32>,
+}
+
+fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkReport {
+    let mut report = ChunkReport::default();
+    let step = ctx.step;
+    for (i, leaf) in chunk.iter_mut().enumerate() {
+        let position = leaf.path.position();
+        let every = ctx
+            .lod
+            .steps_at_squared(step.focus.map(|f| f.distance_squared(position)));
+        // Due on its phase of the tier's period (1, 2 or 4 steps): the leaves of a tier take
+        // their turns on different steps, and a change of tier never waits longer than 4 steps.
+        // (`every` is a power of two: the phase is a mask, not a division.)
+        if (ctx.steps + (first + i) as u64) & u64::from(every - 1) != 0 {
+            report.resting += usize::from(leaf.path.landed());
+            continue;
+        }
+        let waited = (ctx.clock - leaf.updated) as f32;
+        let wind = step.wind.map_or(Vec3::ZERO, |w| w.velocity(position));
+        // Stepped before the last span was shown (a finer tier), or still easing: what is shown
+        // now, to ease from.
+        let easing = leaf
+            .from
+            .as_ref()
+            .is_some_and(|e| ((ctx.clock - e.start) as f32) < e.length);
+        let before =
+            (easing || leaf.share(ctx.clock) < 1.0).then(|| (leaf.shown(ctx.clock), leaf.span));
+        let outcome = leaf.path.advance(step.model, waited, wind, &step.tilt);
+        leaf.from = before.map(|(shown, span)| {
+            Box::new(Easing {
+                offset: shown.position - leaf.path.smoothed(0.0).0,
+                rotation: shown.rotation,
+                start: ctx.clock,
+                // Over two of the spans before: it catches up at most half a step per step.
+                length: 2.0 * span.max(waited),
+            })
+        });
+        leaf.updated = ctx.clock;
+        leaf.span = waited;
+        report.advanced += 1;
+        match outcome {
+            StepOutcome::Landed => {
+                report.landed += 1;
+                leaf.resting = 0.0;
+            }
+            StepOutcome::Resting => {
+                leaf.resting += waited;
+                if ctx.recycle_after.is_some_and(|t| leaf.resting >= t) {
+                    report.recycle.push(i as u32);
+                }
+            }
+            StepOutcome::Falling => leaf.resting = 0.0,
+        }
+        report.resting += usize::from(leaf.path.landed());
+    }
+    report
+}
+
+/// The seed of leaf `index`'s `release`-th fall: SplitMix64's finaliser over the cloud's seed,
+/// the index and the release, so neighbouring leaves get unrelated streams.
+fn leaf_seed(seed: u64, index: usize, release: u32) -> u64 {
+    let mut z = seed
+        ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ u64::from(release).wrapping_mul(0xD1B5_4A32_D192_ED03);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}

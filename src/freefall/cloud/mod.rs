@@ -1,0 +1,244 @@
+//! Leaf clouds: thousands to hundreds of thousands of falling leaves in one entity.
+//!
+//! A [`LeafCloud`] is a [`FallingObject`] description times `count`: every leaf is a full
+//! [`FallPath`](super::FallPath) (the same phase diagram, Markov chain, trajectory database,
+//! search tree and wind coupling as a single `FallingObject`), but the leaves live in one
+//! contiguous array in [`LeafCloudState`] instead of an entity each, are stepped in parallel
+//! chunks of [`CLOUD_CHUNK`], and are drawn (feature `render`, `gpu::LeafCloudRenderPlugin`) by
+//! one draw of one mesh whose vertices read their leaf's pose from a storage buffer. No
+//! `Transform` per leaf, no change detection, no transform propagation: that is what 10 000
+//! single entities spend most of their frame on.
+//!
+//! # Levels of detail
+//!
+//! With a [`LodFocus`] (put it on the camera), each leaf's distance d from it picks a tier:
+//!
+//! | tier | distance | stepped every | shown |
+//! |---|---|---|---|
+//! | full | d < [`CloudLod::near`] | fixed step | Bézier between its last two steps |
+//! | half | near ≤ d < [`CloudLod::far`] | 2nd fixed step | the same, over two steps |
+//! | quarter | d ≥ far | 4th fixed step | the same, over four steps |
+//!
+//! A leaf stepped less often is advanced over the whole time since its last step, so it follows
+//! the same path (the pieces are sampled by time) and lands at the same time; it reads the wind
+//! less often. The leaves of a tier take turns (leaf i on steps where (step + i) is a multiple of
+//! the period), so the cost per step is even. Changing tier never moves a leaf: the shown pose
+//! runs from its last control point to the next over the share of the span that has passed.
+//!
+//! # Determinism
+//!
+//! Leaf i's stream is seeded from the cloud's seed and i (and how many times it was let go), and
+//! leaves do not interact, so a cloud gives the same bits on one thread or many
+//! (`tests/cloud.rs`).
+
+mod leaves;
+mod plugin;
+
+pub use leaves::{CLOUD_CHUNK, CloudLeaves, CloudStep, CloudStepReport, LeafPose};
+pub use plugin::{LeafCloudInvalid, LeafCloudPlugin, LeafCloudState, LodFocus};
+
+use bevy::ecs::prelude::*;
+use bevy::math::Vec3;
+use bevy::reflect::Reflect;
+use bevy::reflect::std_traits::ReflectDefault;
+use bevy::transform::components::Transform;
+
+use super::model::FallModel;
+use super::plugin::FallingObject;
+use super::regime::FreeFallError;
+
+/// Most leaves one cloud may hold.
+pub const MAX_CLOUD_LEAVES: u32 = 4_000_000;
+
+/// A box the leaves are let go in, world coordinates, m.
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+#[reflect(Default, Debug)]
+pub struct CloudRegion {
+    /// The lowest corner.
+    pub min: Vec3,
+    /// The highest corner.
+    pub max: Vec3,
+}
+
+impl Default for CloudRegion {
+    /// 20 m × 20 m, from 2 m to 12 m up, centred on the origin.
+    fn default() -> Self {
+        Self {
+            min: Vec3::new(-10.0, 2.0, -10.0),
+            max: Vec3::new(10.0, 12.0, 10.0),
+        }
+    }
+}
+
+/// The distances, m, from the [`LodFocus`] at which leaves are stepped every second and every
+/// fourth fixed step (see the [module](self)).
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+#[reflect(Default, Debug)]
+pub struct CloudLod {
+    /// Nearer than this: every step.
+    pub near: f32,
+    /// Nearer than this: every second step; farther: every fourth.
+    pub far: f32,
+}
+
+impl Default for CloudLod {
+    /// Every step within 25 m, every second to 60 m, every fourth beyond.
+    fn default() -> Self {
+        Self {
+            near: 25.0,
+            far: 60.0,
+        }
+    }
+}
+
+impl CloudLod {
+    /// Every leaf every step, at any distance.
+    pub const FULL: Self = Self {
+        near: f32::INFINITY,
+        far: f32::INFINITY,
+    };
+
+    /// The period, in fixed steps, of a leaf `distance` m from the focus (`None`, NaN: 1).
+    pub fn steps_at(&self, distance: Option<f32>) -> u32 {
+        self.steps_at_squared(distance.map(|d| d * d.abs()))
+    }
+
+    /// [`Self::steps_at`] from the squared distance (no square root per leaf).
+    pub(crate) fn steps_at_squared(&self, squared: Option<f32>) -> u32 {
+        match squared {
+            Some(d2) if d2 >= self.far * self.far.abs() => 4,
+            Some(d2) if d2 >= self.near * self.near.abs() => 2,
+            _ => 1,
+        }
+    }
+}
+
+/// A cloud of `count` falling leaves (or paper, confetti, ash) let go in `region`.
+///
+/// Each leaf falls as a single [`FallingObject`] with the description `object` would (its own
+/// seed from the cloud's `seed` and its index), lands on [`FreeFallSettings::ground_height`],
+/// stays there, and is lifted again by a strong enough wind as a single object is. Change the
+/// component to let the whole cloud go again. The cloud's own `Transform` does not move the
+/// leaves: they live in world space.
+///
+/// [`FreeFallSettings::ground_height`]: super::FreeFallSettings::ground_height
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::freefall::{FallPreset, LeafCloud, LeafCloudState};
+/// use bevy_windfall::prelude::*;
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// let storm = app
+///     .world_mut()
+///     .spawn(LeafCloud {
+///         object: FallPreset::MapleLeaf.object(),
+///         count: 2_000,
+///         ..default()
+///     })
+///     .id();
+/// app.update();
+/// let leaves = app.world().get::<LeafCloudState>(storm).unwrap().leaves().unwrap();
+/// assert_eq!(leaves.len(), 2_000);
+/// ```
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Default, Debug)]
+#[require(Transform, LeafCloudState)]
+pub struct LeafCloud {
+    /// What each leaf is (its `seed` is mixed into the cloud's).
+    pub object: FallingObject,
+    /// How many leaves (≤ [`MAX_CLOUD_LEAVES`]).
+    pub count: u32,
+    /// Seed of the whole cloud.
+    pub seed: u64,
+    /// Where they are let go.
+    pub region: CloudRegion,
+    /// Levels of detail.
+    pub lod: CloudLod,
+    /// A leaf resting this long, s, is let go again from the top of the region (`None`: leaves
+    /// stay down until the wind lifts them).
+    pub recycle_after: Option<f32>,
+}
+
+impl Default for LeafCloud {
+    /// 10 000 default leaves in the default region, staying down once landed.
+    fn default() -> Self {
+        Self {
+            object: FallingObject::default(),
+            count: 10_000,
+            seed: 0,
+            region: CloudRegion::default(),
+            lod: CloudLod::default(),
+            recycle_after: None,
+        }
+    }
+}
+
+impl LeafCloud {
+    /// Checks every field (the error names it: `count`, `region.min`, `lod.near`, ...) and
+    /// builds the leaves above `ground`.
+    ///
+    /// # Errors
+    /// What [`FallingObject::regime`] rejects, a count above [`MAX_CLOUD_LEAVES`], a region
+    /// whose corners are not finite, beyond ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) or not
+    /// ordered, negative or NaN LOD distances (far < near), a `recycle_after` not finite and
+    /// ≥ 0, or a ground that is not finite.
+    pub fn leaves(&self, model: &FallModel, ground: f32) -> Result<CloudLeaves, FreeFallError> {
+        let invalid = |field, value, reason| FreeFallError::Invalid {
+            field,
+            value,
+            reason,
+        };
+        let regime = self.object.regime()?;
+        if self.count > MAX_CLOUD_LEAVES {
+            return Err(invalid("count", self.count as f32, "must be ≤ 4 000 000"));
+        }
+        let within = |v: Vec3| v.is_finite() && v.abs().max_element() <= crate::MAX_COORDINATE;
+        if !within(self.region.min) {
+            return Err(invalid(
+                "region.min",
+                self.region.min.max_element(),
+                "must be finite and within ±MAX_COORDINATE",
+            ));
+        }
+        if !within(self.region.max) || self.region.max.cmplt(self.region.min).any() {
+            return Err(invalid(
+                "region.max",
+                self.region.max.min_element(),
+                "must be finite, within ±MAX_COORDINATE and ≥ region.min on every axis",
+            ));
+        }
+        if self.lod.near.is_nan() || self.lod.near < 0.0 {
+            return Err(invalid("lod.near", self.lod.near, "must be ≥ 0"));
+        }
+        if self.lod.far.is_nan() || self.lod.far < self.lod.near {
+            return Err(invalid("lod.far", self.lod.far, "must be ≥ lod.near"));
+        }
+        if let Some(t) = self.recycle_after
+            && !(t.is_finite() && t >= 0.0)
+        {
+            return Err(invalid("recycle_after", t, "must be finite and ≥ 0"));
+        }
+        if !ground.is_finite() {
+            return Err(invalid("release.ground", ground, "must be finite"));
+        }
+        let chain = match &self.object.markov {
+            Some(chain) => std::sync::Arc::new(chain.bounded(regime.main)),
+            None => model.bounded_shared(regime.main),
+        };
+        Ok(CloudLeaves::new(
+            model,
+            self.object.scales(&regime),
+            chain,
+            self.count as usize,
+            self.seed ^ self.object.seed.rotate_left(32),
+            self.region,
+            ground,
+            self.lod,
+            self.recycle_after,
+        ))
+    }
+}

@@ -1,0 +1,52 @@
+// Vertex shader of `LeafCloudMaterial`: one mesh holds every leaf of a cloud at the origin,
+// each vertex tagged with its leaf's index (the second UV set's x); the leaf's pose (position,
+// rotation) is read from a storage buffer written once per frame. See `src/gpu/cloud.rs`.
+#import bevy_pbr::{
+    forward_io::{Vertex, VertexOutput},
+    view_transformations::position_world_to_clip,
+}
+
+struct LeafPose {
+    // xyz: position, m; w: scale.
+    position: vec4<f32>,
+    // A unit quaternion (x, y, z, w).
+    rotation: vec4<f32>,
+}
+
+@group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> leaf_poses: array<LeafPose>;
+
+// v turned by the unit quaternion q.
+fn rotate_by(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
+    let t = 2.0 * cross(q.xyz, v);
+    return v + q.w * t + cross(q.xyz, t);
+}
+
+@vertex
+fn vertex(vertex: Vertex) -> VertexOutput {
+    var out: VertexOutput;
+#ifdef VERTEX_UVS_B
+    let leaf = u32(vertex.uv_b.x);
+#else
+    let leaf = 0u;
+#endif
+    let pose = leaf_poses[min(leaf, arrayLength(&leaf_poses) - 1u)];
+    let world = pose.position.xyz + rotate_by(pose.rotation, vertex.position * pose.position.w);
+    out.world_position = vec4<f32>(world, 1.0);
+    out.position = position_world_to_clip(world);
+#ifdef VERTEX_NORMALS
+    out.world_normal = rotate_by(pose.rotation, vertex.normal);
+#endif
+#ifdef VERTEX_UVS_A
+    out.uv = vertex.uv;
+#endif
+#ifdef VERTEX_UVS_B
+    out.uv_b = vertex.uv_b;
+#endif
+#ifdef VERTEX_COLORS
+    out.color = vertex.color;
+#endif
+#ifdef VERTEX_OUTPUT_INSTANCE_INDEX
+    out.instance_index = vertex.instance_index;
+#endif
+    return out;
+}
