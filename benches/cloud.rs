@@ -110,7 +110,7 @@ fn cloud(c: &mut Criterion) {
     });
     let mut poses = Vec::new();
     group.bench_function("poses_for_drawing", |b| {
-        b.iter(|| full.poses(0.5, DT, Some(&pool), &mut poses))
+        b.iter(|| full.poses(0.5, Some(&pool), &mut poses))
     });
     group.finish();
 }

@@ -45,7 +45,7 @@ fn tilt() -> WindTilt {
 /// Whether every shown pose, half a step after the last, is finite.
 fn poses_finite(leaves: &CloudLeaves) -> bool {
     let mut poses = Vec::new();
-    leaves.poses(0.5, DT, None, &mut poses);
+    leaves.poses(0.5, None, &mut poses);
     poses
         .iter()
         .all(|p| p.position.is_finite() && p.rotation.is_finite())
@@ -61,6 +61,7 @@ fn bits(leaves: &CloudLeaves) -> Vec<u32> {
         .collect()
 }
 
+/// Steps the cloud `steps` times in `wind`; returns how many leaves were let go again.
 fn run(
     leaves: &mut CloudLeaves,
     model: &FallModel,
@@ -68,7 +69,8 @@ fn run(
     focus: Option<Vec3>,
     steps: usize,
     pool: Option<&TaskPool>,
-) {
+) -> usize {
+    let mut recycled = 0;
     for _ in 0..steps {
         wind.advance(DT);
         let step = CloudStep {
@@ -78,8 +80,9 @@ fn run(
             tilt: tilt(),
             focus,
         };
-        leaves.step(&step, pool);
+        recycled += leaves.step(&step, pool).recycled;
     }
+    recycled
 }
 
 #[test]
@@ -92,17 +95,31 @@ fn same_bits_on_one_thread_or_four() {
     let mut serial = description.leaves(&model, 0.0).unwrap();
     let mut parallel = serial.clone();
     let pool = TaskPoolBuilder::new().num_threads(4).build();
-    let focus = Some(Vec3::new(0.0, 2.0, 30.0));
-    run(&mut serial, &model, &mut gale(), focus, 600, None);
-    run(&mut parallel, &model, &mut gale(), focus, 600, Some(&pool));
+    // 25 to 70 m from the leaves: all three tiers.
+    let focus = Some(Vec3::new(0.0, 2.0, 45.0));
+    let recycled = run(&mut serial, &model, &mut gale(), focus, 600, None);
+    assert_eq!(
+        run(&mut parallel, &model, &mut gale(), focus, 600, Some(&pool)),
+        recycled
+    );
     assert_eq!(bits(&serial), bits(&parallel));
+    assert_eq!(serial.resting(), parallel.resting());
+    let (mut one, mut four) = (Vec::new(), Vec::new());
+    serial.poses(0.3, None, &mut one);
+    parallel.poses(0.3, Some(&pool), &mut four);
+    let pose_bits = |poses: &[LeafPose]| -> Vec<u32> {
+        poses
+            .iter()
+            .flat_map(|p| {
+                let (x, q) = (p.position, p.rotation);
+                [x.x, x.y, x.z, q.x, q.y, q.z, q.w].map(f32::to_bits)
+            })
+            .collect()
+    };
+    assert_eq!(pose_bits(&one), pose_bits(&four));
     // Not a still picture: the leaves fell, some landed, and some were let go again.
     assert!(serial.resting() > 0 && serial.resting() < serial.len());
-    let again = serial
-        .paths()
-        .filter(|p| p.time() < 10.0 - 1.0 && p.position().y > 1.0)
-        .count();
-    assert!(again > 0, "no leaf was recycled");
+    assert!(recycled > 0, "no leaf was recycled");
     // And the same cloud built again gives the same bits.
     let mut rebuilt = description.leaves(&model, 0.0).unwrap();
     run(&mut rebuilt, &model, &mut gale(), focus, 600, None);
@@ -222,7 +239,7 @@ fn changing_tier_never_jumps() {
         };
         leaves.step(&step, None);
         for quarter in 0..4 {
-            leaves.poses(quarter as f32 / 4.0, DT, None, &mut poses);
+            leaves.poses(quarter as f32 / 4.0, None, &mut poses);
             if let Some(before) = &previous {
                 let worst = before
                     .iter()
@@ -262,6 +279,28 @@ fn changing_tier_never_jumps() {
             .iter()
             .all(|p| (p.rotation.length() - 1.0).abs() < 1e-4)
     );
+    // And the easing ends: a second after every leaf went to full detail (some had blown past
+    // 100 m), each is shown exactly on its path.
+    for _ in 0..60 {
+        wind.advance(DT);
+        let step = CloudStep {
+            model: &model,
+            wind: Some(&wind),
+            dt: DT,
+            tilt: tilt(),
+            focus: None,
+        };
+        leaves.step(&step, None);
+    }
+    leaves.poses(0.5, None, &mut poses);
+    for (i, pose) in poses.iter().enumerate() {
+        let (position, rotation) = leaves.path(i).unwrap().smoothed(0.5);
+        assert_eq!(
+            (pose.position, pose.rotation),
+            (position, rotation),
+            "leaf {i}"
+        );
+    }
 }
 
 fn cloud_app(description: LeafCloud, wind: Option<WindConfig>) -> (App, Entity) {

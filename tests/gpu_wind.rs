@@ -477,3 +477,52 @@ fn the_gpu_samples_the_same_wind_as_the_cpu() {
         );
     }
 }
+
+/// Every triangle of a leaf cloud's mesh faces the way its normal points (+Y), for every shape:
+/// a double-sided material flips the normal of back faces, so a reversed winding would light
+/// each leaf from the wrong side.
+#[test]
+fn cloud_leaves_face_their_normals() {
+    use bevy::mesh::{Mesh, VertexAttributeValues};
+    use bevy_windfall::freefall::Shape;
+    use bevy_windfall::gpu::{LeafCloudLook, cloud_mesh};
+    for shape in [
+        Shape::Ellipse {
+            major: 0.1,
+            minor: 0.05,
+            thickness: 3e-4,
+        },
+        Shape::Disk {
+            diameter: 0.02,
+            thickness: 1e-3,
+        },
+        Shape::Rectangle {
+            length: 0.09,
+            width: 0.06,
+            thickness: 3e-4,
+        },
+    ] {
+        let mesh = cloud_mesh(&shape, 3, &LeafCloudLook::default());
+        let Some(VertexAttributeValues::Float32x3(positions)) =
+            mesh.attribute(Mesh::ATTRIBUTE_POSITION)
+        else {
+            panic!("positions");
+        };
+        let Some(VertexAttributeValues::Float32x3(normals)) =
+            mesh.attribute(Mesh::ATTRIBUTE_NORMAL)
+        else {
+            panic!("normals");
+        };
+        let indices: Vec<usize> = mesh.indices().expect("indices").iter().collect();
+        assert!(indices.len() >= 3 * 2 * 3, "{shape:?}");
+        for t in indices.chunks_exact(3) {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| Vec3::from_array(positions[i]));
+            let face = (b - a).cross(c - a);
+            let normal = Vec3::from_array(normals[t[0]]);
+            assert!(
+                face.dot(normal) > 0.0,
+                "{shape:?}: a triangle faces −normal"
+            );
+        }
+    }
+}

@@ -175,3 +175,29 @@ fn bad_input_gives_a_named_error() {
         ));
     }
 }
+
+/// A shared synthesizer (kept across fields of the same grid and β) gives the same bits as a
+/// fresh one, for every key it is asked for in turn, more keys than it keeps included.
+#[test]
+fn shared_synthesizers_give_the_same_bits_as_fresh_ones() {
+    use bevy_windfall::spectrum::{CACHED_SYNTHESIZERS, FftBackend, Synthesizer};
+    let keys: Vec<(Vec<usize>, f32)> = (0..CACHED_SYNTHESIZERS + 2)
+        .map(|i| (vec![16 + 2 * i, 12], 1.0 + 0.25 * i as f32))
+        .collect();
+    for round in 0..2u64 {
+        for (dims, beta) in &keys {
+            let shared = Synthesizer::shared(dims, *beta, FftBackend::Portable).unwrap();
+            let fresh = Synthesizer::new(dims, *beta, FftBackend::Portable).unwrap();
+            let bits = |v: Vec<f32>| v.into_iter().map(f32::to_bits).collect::<Vec<_>>();
+            assert_eq!(
+                bits(shared.field(round)),
+                bits(fresh.field(round)),
+                "{dims:?}"
+            );
+            let (a, b) = (shared.pair(round + 7), fresh.pair(round + 7));
+            assert_eq!((bits(a.0), bits(a.1)), (bits(b.0), bits(b.1)), "{dims:?}");
+        }
+    }
+    // An invalid key is refused, not cached.
+    assert!(Synthesizer::shared(&[1], 1.0, FftBackend::Portable).is_err());
+}

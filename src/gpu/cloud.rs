@@ -92,7 +92,8 @@ impl Default for LeafCloudLook {
 pub struct LeafCloudVisual {
     /// The poses ([`CloudPoses::poses`]).
     pub poses: Handle<ShaderBuffer>,
-    count: u32,
+    /// Leaves drawn.
+    count: usize,
     shape: Shape,
     look: LeafCloudLook,
 }
@@ -147,6 +148,7 @@ fn attach_visuals(
     clouds: Query<(
         Entity,
         &LeafCloud,
+        &LeafCloudState,
         Option<&LeafCloudLook>,
         Option<&LeafCloudVisual>,
     )>,
@@ -154,16 +156,28 @@ fn attach_visuals(
     mut materials: ResMut<Assets<LeafCloudMaterial>>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
 ) {
-    for (entity, cloud, look, visual) in &clouds {
+    for (entity, cloud, state, look, visual) in &clouds {
+        // An invalid cloud (its error is in `LeafCloudInvalid`) has nothing to draw.
+        let Some(leaves) = state.leaves() else {
+            continue;
+        };
         let look = look.cloned().unwrap_or_default();
+        let count = drawn(leaves.len());
         if visual.is_some_and(|v| {
-            v.count == cloud.count && v.shape == cloud.object.shape && v.look == look
+            v.count == count
+                && v.shape == cloud.object.shape
+                && format!("{:?}", v.look) == format!("{look:?}")
         }) {
             continue;
         }
-        let count = cloud.count.max(1);
+        if count < leaves.len() {
+            bevy::log::warn!(
+                "LeafCloud {entity}: drawing {count} of its {} leaves (MAX_DRAWN_LEAVES)",
+                leaves.len()
+            );
+        }
         let poses = buffers.add(ShaderBuffer::new(
-            &vec![0; count as usize * POSE_BYTES],
+            &vec![0; count.max(1) * POSE_BYTES],
             RenderAssetUsages::RENDER_WORLD,
         ));
         let material = materials.add(LeafCloudMaterial {
@@ -178,14 +192,14 @@ fn attach_visuals(
                 poses: poses.clone(),
             },
         });
-        let mesh = meshes.add(cloud_mesh(&cloud.object.shape, cloud.count, &look));
+        let mesh = meshes.add(cloud_mesh(&cloud.object.shape, count as u32, &look));
         commands.entity(entity).insert((
             Mesh3d(mesh),
             MeshMaterial3d(material),
             NoFrustumCulling,
             LeafCloudVisual {
                 poses,
-                count: cloud.count,
+                count,
                 shape: cloud.object.shape,
                 look,
             },
@@ -200,9 +214,10 @@ fn write_poses(
 ) {
     for (state, visual) in &clouds {
         let poses = state.poses();
-        if poses.len() != visual.count as usize || poses.is_empty() {
+        if poses.len() < visual.count || visual.count == 0 {
             continue;
         }
+        let poses = &poses[..visual.count];
         let Some(mut buffer) = buffers.get_mut(&visual.poses) else {
             continue;
         };
@@ -231,13 +246,14 @@ fn outline(shape: &Shape) -> Vec<Vec3> {
     match *shape {
         Shape::Ellipse { major, minor, .. } => {
             let (x, z) = (0.5 * minor, 0.5 * major);
+            // Counter-clockwise seen from +Y (+Z toward −X), as the fan's faces need.
             [
                 (0.0, 1.0),
-                (0.9, 0.25),
-                (0.75, -0.55),
-                (0.0, -0.9),
-                (-0.75, -0.55),
                 (-0.9, 0.25),
+                (-0.75, -0.55),
+                (0.0, -0.9),
+                (0.75, -0.55),
+                (0.9, 0.25),
             ]
             .map(|(a, b)| Vec3::new(a * x, 0.0, b * z))
             .to_vec()
@@ -245,7 +261,7 @@ fn outline(shape: &Shape) -> Vec<Vec3> {
         Shape::Disk { diameter, .. } => (0..8)
             .map(|k| {
                 let a = std::f32::consts::TAU * k as f32 / 8.0;
-                0.5 * diameter * Vec3::new(a.sin(), 0.0, a.cos())
+                0.5 * diameter * Vec3::new(-a.sin(), 0.0, a.cos())
             })
             .collect(),
         Shape::Rectangle { length, width, .. } => {
@@ -260,12 +276,21 @@ fn outline(shape: &Shape) -> Vec<Vec3> {
     }
 }
 
-/// `count` leaves of `shape`'s outline at the origin, each a triangle fan, tagged with its index
-/// in UV set 1 and coloured from `look`.
+/// Most leaves of one cloud that are drawn: the vertex buffer (6–8 vertices of 56 bytes a leaf)
+/// stays under 256 MiB, wgpu's default largest buffer. Leaves beyond are simulated, not drawn.
+pub const MAX_DRAWN_LEAVES: usize = 500_000;
+
+/// How many of `leaves` are drawn.
+fn drawn(leaves: usize) -> usize {
+    leaves.min(MAX_DRAWN_LEAVES)
+}
+
+/// `count` leaves (at least 1, at most [`MAX_DRAWN_LEAVES`]) of `shape`'s outline at the origin,
+/// each a triangle fan facing +Y, tagged with its index in UV set 1 and coloured from `look`.
 pub fn cloud_mesh(shape: &Shape, count: u32, look: &LeafCloudLook) -> Mesh {
     let corners = outline(shape);
     let n = corners.len() as u32;
-    let count = count.max(1);
+    let count = drawn(count as usize).max(1) as u32;
     let palette: Vec<LinearRgba> = if look.palette.is_empty() {
         vec![LinearRgba::WHITE]
     } else {

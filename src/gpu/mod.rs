@@ -35,7 +35,7 @@ mod sway;
 
 pub use cloud::{
     CloudPoses, LeafCloudLook, LeafCloudMaterial, LeafCloudRenderPlugin, LeafCloudVisual,
-    POSE_BYTES, cloud_mesh,
+    MAX_DRAWN_LEAVES, POSE_BYTES, cloud_mesh,
 };
 pub use params::{GpuLocal, GpuWindParams, MAX_GPU_LOCALS, node_bytes};
 pub use sway::{SwaySettings, WindSway, WindSwayMaterial};

@@ -35,6 +35,6 @@ pub use grid::GridShape;
 pub(crate) use sample::periodic_lerp;
 pub use sample::periodic_lerp_2d;
 pub use synth::{
-    CACHED_SYNTHESIZERS, MAX_NODES, SpectrumError, Synthesizer, fbm, fbm_pair, try_fbm,
-    try_fbm_pair,
+    CACHED_SYNTHESIZERS, MAX_CACHED_NODES, MAX_NODES, SpectrumError, Synthesizer, fbm, fbm_pair,
+    try_fbm, try_fbm_pair,
 };

@@ -106,6 +106,10 @@ fn validate(dims: &[usize], beta: f32) -> Result<(), SpectrumError> {
 /// How many synthesizers [`Synthesizer::shared`] keeps (most recently used first).
 pub const CACHED_SYNTHESIZERS: usize = 4;
 
+/// Grids above this many nodes (2^22: 256³ is above, 128³ below) are not kept: their tables
+/// (a quarter to an eighth of the grid, 4 bytes a bin) would stay for the process's life.
+pub const MAX_CACHED_NODES: usize = 1 << 22;
+
 /// The key of a shared synthesizer: dims, β's bits, backend.
 type SharedKey = (Vec<usize>, u32, FftBackend);
 
@@ -144,7 +148,7 @@ impl Synthesizer {
     }
 
     /// A shared synthesizer for `dims`, `beta` and `backend`: the last [`CACHED_SYNTHESIZERS`]
-    /// made this way are kept, so rebuilding a field of the same grid and β (a new seed, a new
+    /// made this way (of at most [`MAX_CACHED_NODES`] nodes) are kept, so rebuilding a field of the same grid and β (a new seed, a new
     /// speed, a rebuilt wind) skips the amplitude table and the FFT planning, which are most of
     /// a small field's cost. The table and plans depend only on the key: the fields are the same
     /// bits either way.
@@ -166,6 +170,12 @@ impl Synthesizer {
             let synth = Arc::clone(&hit.1);
             cache.insert(0, hit);
             return Ok(synth);
+        }
+        let nodes: usize = dims.iter().product();
+        if nodes > MAX_CACHED_NODES {
+            // Too big to keep for the process's life: built, used, dropped.
+            drop(cache);
+            return Ok(Arc::new(Self::new(dims, beta, backend)?));
         }
         // Built under the lock: two threads asking for the same key build it once.
         let synth = Arc::new(Self::new(dims, beta, backend)?);

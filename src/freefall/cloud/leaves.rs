@@ -37,14 +37,24 @@ struct Leaf {
     from: Option<Box<Easing>>,
 }
 
-/// The shown pose's offset from the path when a leaf was stepped, eased out over `length`.
+/// How far the shown pose was from the path when a leaf was stepped, eased out by `end`.
 #[derive(Clone, Copy, Debug)]
 struct Easing {
+    /// Shown position − the path's, at `start`.
     offset: Vec3,
-    /// The rotation shown then.
-    rotation: Quat,
+    /// Shown rotation × the path's inverse, at `start`.
+    turn: Quat,
     start: f64,
-    length: f32,
+    /// The cloud's clock when the easing is over (it is not pushed back by later steps).
+    end: f64,
+}
+
+impl Easing {
+    /// The share of the easing still to go at `now`: 1 at its start, 0 from its end.
+    fn left(&self, now: f64) -> f32 {
+        let length = (self.end - self.start).max(1e-9);
+        ((self.end - now) / length).clamp(0.0, 1.0) as f32
+    }
 }
 
 impl Leaf {
@@ -63,10 +73,10 @@ impl Leaf {
         let (position, rotation) = self.path.smoothed(self.share(now));
         match self.from.as_deref() {
             Some(e) => {
-                let done = ((now - e.start) as f32 / e.length.max(1e-6)).clamp(0.0, 1.0);
+                let left = e.left(now);
                 LeafPose {
-                    position: position + e.offset * (1.0 - done),
-                    rotation: e.rotation.lerp(rotation, done),
+                    position: position + e.offset * left,
+                    rotation: (Quat::IDENTITY.lerp(e.turn, left) * rotation).normalize(),
                 }
             }
             None => LeafPose { position, rotation },
@@ -128,6 +138,8 @@ pub struct CloudLeaves {
     clock: f64,
     /// Fixed steps taken.
     steps: u64,
+    /// The last step's length, s (what an overstep is a share of).
+    last_dt: f32,
     /// Leaves on the ground.
     resting: usize,
 }
@@ -160,6 +172,7 @@ impl CloudLeaves {
             recycle_after,
             clock: 0.0,
             steps: 0,
+            last_dt: 0.0,
             resting: 0,
         };
         for index in 0..count {
@@ -218,6 +231,7 @@ impl CloudLeaves {
         };
         self.clock += f64::from(dt);
         self.steps += 1;
+        self.last_dt = dt;
         let ctx = ChunkContext {
             step,
             clock: self.clock,
@@ -269,13 +283,19 @@ impl CloudLeaves {
         report
     }
 
-    /// The shown poses, `overstep` ∈ [0, 1] of a fixed step after the last one: each leaf on the
+    /// The shown poses, `overstep` ∈ [0, 1] of a step (as long as the last one) after the last
+    /// one: each leaf on the
     /// Bézier between its last two control points ([`FallPath::smoothed`]), at the share of its
     /// last step's span that has passed, so a leaf stepped every fourth step moves as smoothly
     /// as one stepped every step and a change of tier never jumps. `out` is resized to the
     /// leaves.
-    pub fn poses(&self, overstep: f32, dt: f32, pool: Option<&TaskPool>, out: &mut Vec<LeafPose>) {
-        let now = self.clock + f64::from(overstep.clamp(0.0, 1.0) * dt.max(0.0));
+    pub fn poses(&self, overstep: f32, pool: Option<&TaskPool>, out: &mut Vec<LeafPose>) {
+        let overstep = if overstep.is_finite() {
+            overstep.clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let now = self.clock + f64::from(overstep * self.last_dt);
         out.resize(
             self.leaves.len(),
             LeafPose {
@@ -382,20 +402,26 @@ fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkRepo
         let wind = step.wind.map_or(Vec3::ZERO, |w| w.velocity(position));
         // Stepped before the last span was shown (a finer tier), or still easing: what is shown
         // now, to ease from.
-        let easing = leaf
+        let running = leaf
             .from
             .as_ref()
-            .is_some_and(|e| ((ctx.clock - e.start) as f32) < e.length);
-        let before =
-            (easing || leaf.share(ctx.clock) < 1.0).then(|| (leaf.shown(ctx.clock), leaf.span));
+            .map(|e| e.end)
+            .filter(|&end| end > ctx.clock);
+        // (The share is a ratio of f64 clock differences rounded to f32: a step of the same
+        // span can come out a rounding short of 1, which is no lag worth easing.)
+        let lagging = leaf.share(ctx.clock) < 1.0 - 1e-3;
+        let before = (running.is_some() || lagging).then(|| leaf.shown(ctx.clock));
+        // A new easing lasts two of the spans before (it catches up at most half a step per
+        // step); one under way keeps its end.
+        let end = running.unwrap_or(ctx.clock + 2.0 * f64::from(leaf.span.max(waited)));
         let outcome = leaf.path.advance(step.model, waited, wind, &step.tilt);
-        leaf.from = before.map(|(shown, span)| {
+        leaf.from = before.map(|shown| {
+            let (position, rotation) = leaf.path.smoothed(0.0);
             Box::new(Easing {
-                offset: shown.position - leaf.path.smoothed(0.0).0,
-                rotation: shown.rotation,
+                offset: shown.position - position,
+                turn: (shown.rotation * rotation.inverse()).normalize(),
                 start: ctx.clock,
-                // Over two of the spans before: it catches up at most half a step per step.
-                length: 2.0 * span.max(waited),
+                end,
             })
         });
         leaf.updated = ctx.clock;

@@ -56,7 +56,7 @@ impl LeafCloudState {
 pub struct LeafCloudInvalid(pub FreeFallError);
 
 /// Where the levels of detail of every [`LeafCloud`] are measured from: put it on the camera.
-/// With several, the one with the lowest entity index counts; with none, every leaf is at full
+/// With several, the lowest `Entity` (by its ordering) counts; with none, every leaf is at full
 /// detail.
 #[derive(Component, Clone, Copy, Debug, Default, Reflect)]
 #[reflect(Component, Default, Debug)]
@@ -126,10 +126,16 @@ fn release_clouds(
     };
     let ground = settings.map_or(0.0, |s| s.ground_height);
     for (entity, cloud, mut state) in &mut clouds {
-        if state.released_for.as_ref() != Some(cloud) {
+        if !state.released_for.as_ref().is_some_and(|r| same(r, cloud)) {
             release(&mut commands, entity, cloud, &mut state, ground, &model);
         }
     }
+}
+
+/// The same description, NaN fields included (a NaN is not equal to itself, so `==` alone would
+/// release an invalid cloud again, and log it again, every time it is touched).
+fn same(a: &LeafCloud, b: &LeafCloud) -> bool {
+    a == b || format!("{a:?}") == format!("{b:?}")
 }
 
 fn release(
@@ -201,12 +207,11 @@ fn pose_clouds(
     fixed: Option<Res<Time<Fixed>>>,
 ) {
     let s = crate::overstep(schedule.as_deref(), fixed.as_deref());
-    let dt = fixed.map_or(0.0, |t| t.delta_secs());
     let pool = ComputeTaskPool::try_get().map(|p| &**p);
     for mut state in &mut clouds {
         let state = &mut *state;
         match state.leaves.as_ref() {
-            Some(leaves) => leaves.poses(s, dt, pool, &mut state.poses),
+            Some(leaves) => leaves.poses(s, pool, &mut state.poses),
             None => state.poses.clear(),
         }
     }
