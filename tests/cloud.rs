@@ -42,6 +42,23 @@ fn tilt() -> WindTilt {
     }
 }
 
+/// One step of `dt` in `wind` (`None`: still air), with the tests' tilt, levels of detail
+/// measured from `focus`.
+fn step_in<'a>(
+    model: &'a FallModel,
+    wind: Option<&'a WindField>,
+    dt: f32,
+    focus: Option<Vec3>,
+) -> CloudStep<'a> {
+    CloudStep {
+        model,
+        wind,
+        dt,
+        tilt: tilt(),
+        focus,
+    }
+}
+
 /// Whether every shown pose, half a step after the last, is finite.
 fn poses_finite(leaves: &CloudLeaves) -> bool {
     let mut poses = Vec::new();
@@ -73,13 +90,7 @@ fn run(
     let mut recycled = 0;
     for _ in 0..steps {
         wind.advance(DT);
-        let step = CloudStep {
-            model,
-            wind: Some(wind),
-            dt: DT,
-            tilt: tilt(),
-            focus,
-        };
+        let step = step_in(model, Some(wind), DT, focus);
         recycled += leaves.step(&step, pool).recycled;
     }
     recycled
@@ -138,13 +149,7 @@ fn a_cloud_leaf_falls_exactly_as_a_single_path() {
             let u = wind.velocity(p.position());
             p.advance(&model, DT, u, &tilt());
         }
-        let step = CloudStep {
-            model: &model,
-            wind: Some(&wind),
-            dt: DT,
-            tilt: tilt(),
-            focus: None,
-        };
+        let step = step_in(&model, Some(&wind), DT, None);
         leaves.step(&step, None);
     }
     for (cloud_leaf, single) in leaves.paths().zip(&singles) {
@@ -170,13 +175,7 @@ fn distant_leaves_follow_the_same_path_in_still_air() {
     // No ground in reach: a leaf stepped every fourth step would land up to three steps late.
     let mut full = description.leaves(&model, -1.0e3).unwrap();
     let mut far = full.clone();
-    let still = |focus| CloudStep {
-        model: &model,
-        wind: None,
-        dt: DT,
-        tilt: tilt(),
-        focus,
-    };
+    let still = |focus| step_in(&model, None, DT, focus);
     let mut advanced = 0;
     // Where each full-detail leaf was after every step.
     let mut history = vec![full.paths().map(FallPath::position).collect::<Vec<_>>()];
@@ -230,13 +229,7 @@ fn changing_tier_never_jumps() {
         let focus = if (frame / 60) % 2 == 0 { 0.0 } else { 1.0e4 };
         let near_switch = frame % 60 < 5 && frame >= 60;
         wind.advance(DT);
-        let step = CloudStep {
-            model: &model,
-            wind: Some(&wind),
-            dt: DT,
-            tilt: tilt(),
-            focus: Some(Vec3::new(focus, 4.0, 0.0)),
-        };
+        let step = step_in(&model, Some(&wind), DT, Some(Vec3::new(focus, 4.0, 0.0)));
         leaves.step(&step, None);
         for quarter in 0..4 {
             leaves.poses(quarter as f32 / 4.0, None, &mut poses);
@@ -283,13 +276,7 @@ fn changing_tier_never_jumps() {
     // 100 m), each is shown exactly on its path.
     for _ in 0..60 {
         wind.advance(DT);
-        let step = CloudStep {
-            model: &model,
-            wind: Some(&wind),
-            dt: DT,
-            tilt: tilt(),
-            focus: None,
-        };
+        let step = step_in(&model, Some(&wind), DT, None);
         leaves.step(&step, None);
     }
     leaves.poses(0.5, None, &mut poses);
@@ -460,13 +447,7 @@ fn a_nan_focus_or_a_huge_step_never_gives_nan() {
         (None, -1.0),
     ] {
         wind.advance(DT);
-        let step = CloudStep {
-            model: &model,
-            wind: Some(&wind),
-            dt,
-            tilt: tilt(),
-            focus,
-        };
+        let step = step_in(&model, Some(&wind), dt, focus);
         leaves.step(&step, None);
     }
     assert!(poses_finite(&leaves));
@@ -510,13 +491,7 @@ fn hostile_clouds_are_refused_by_name_or_stay_finite() {
                 FreeFallError::field,
                 |mut leaves| {
                     for dt in [DT, 30.0, DT] {
-                        let step = CloudStep {
-                            model: &model,
-                            wind: Some(&wind),
-                            dt,
-                            tilt: tilt(),
-                            focus: Some(Vec3::ZERO),
-                        };
+                        let step = step_in(&model, Some(&wind), dt, Some(Vec3::ZERO));
                         leaves.step(&step, None);
                     }
                     assert!(poses_finite(&leaves), "{field} = {value}");
