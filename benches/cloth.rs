@@ -41,6 +41,28 @@ fn frame(c: &mut Criterion) {
             });
         }
     }
+    // Levels of detail (`ClothLod`): the 64 × 64 flag traced on a grid 1, 2 and 4 times
+    // coarser; the mesh (positions and normals) is still written in full.
+    for stride in [1usize, 2, 4] {
+        let size = 64;
+        let grid = ClothGrid {
+            rows: size,
+            columns: size,
+            width: 1.5,
+            height: 1.0,
+        };
+        let params = ClothPreset::FlagGentleFrozen.params();
+        let mut sim = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
+        let mut mesh = cloth_mesh(size, size, sim.positions());
+        let name = format!("64x64/stride_{stride}");
+        group.bench_function(BenchmarkId::new("step_rebuild_mesh_lod", name), |b| {
+            b.iter(|| {
+                sim.advance(1.0 / 64.0, params.wind_speed);
+                sim.rebuild_at_stride(1.0, stride);
+                write_cloth_mesh(&mut mesh, size, size, black_box(sim.positions()));
+            })
+        });
+    }
     group.finish();
 }
 

@@ -10,8 +10,10 @@ use std::time::Duration;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_windfall::freefall::{
-    FallModel, FallPath, FallingObject, FreeFallPlugin, FreeFallSettings, WindTilt,
+    FallLod, FallModel, FallPath, FallState, FallingObject, FreeFallPlugin, FreeFallSettings,
+    WindTilt,
 };
+use bevy_windfall::lod::LodFocus;
 use bevy_windfall::wind::{WindConfig, WindField, WindPlugin};
 use criterion::{BatchSize, Criterion, criterion_main};
 
@@ -54,6 +56,56 @@ fn drag_particles(points: &mut [(Vec3, Vec3)], wind: &WindField, dt: f32) {
     }
 }
 
+/// A headless app of 10 000 falling objects, one fixed step per update, in wind or still air,
+/// with levels of detail (`FallLod`, a `LodFocus` at (30, 2, −20)) or without.
+fn falling_app(lod: bool, wind: bool) -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin))
+        .insert_resource(Time::<Fixed>::from_seconds(f64::from(DT)))
+        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
+        .add_plugins(FreeFallPlugin)
+        .insert_resource(FreeFallSettings {
+            // Far below (within the ±1e7 m a ground may be): every object falls for the whole
+            // run.
+            ground_height: -1.0e6,
+        });
+    if wind {
+        app.add_plugins(WindPlugin::default());
+    }
+    for i in 0..OBJECTS {
+        let mut e = app.world_mut().spawn((
+            FallingObject {
+                seed: i as u64,
+                ..default()
+            },
+            Transform::from_translation(release_point(i)),
+        ));
+        if lod {
+            e.insert(FallLod::default());
+        }
+    }
+    if lod {
+        app.world_mut()
+            .spawn((LodFocus, Transform::from_xyz(30.0, 2.0, -20.0)));
+    }
+    app.finish();
+    app.cleanup();
+    app.update();
+    // Past the first steps (taken at once by every object with levels of detail).
+    for _ in 0..8 {
+        app.update();
+    }
+    // Every object falls (an invalid one would make the figure meaningless: it is not
+    // stepped).
+    let mut states = app.world_mut().query::<&FallState>();
+    let falling = states
+        .iter(app.world())
+        .filter(|s| s.path().is_some_and(|p| !p.landed()))
+        .count();
+    assert_eq!(falling, OBJECTS, "every object must be falling");
+    app
+}
+
 fn step(c: &mut Criterion) {
     let model = FallModel::default();
     let wind = WindField::new(WindConfig::default()).unwrap();
@@ -70,6 +122,27 @@ fn step(c: &mut Criterion) {
     group.bench_function("procedural_with_wind", |b| {
         b.iter_batched_ref(
             || fresh.clone(),
+            |paths| {
+                for p in paths.iter_mut() {
+                    let u = wind.velocity(p.position());
+                    p.advance(&model, DT, u, &tilt);
+                }
+            },
+            BatchSize::LargeInput,
+        )
+    });
+    // The same two seconds into the fall: pieces end, the chain steps, the database is
+    // searched, motion changes blend (the first step above does none of that).
+    let mut warmed = fresh.clone();
+    for _ in 0..120 {
+        for p in warmed.iter_mut() {
+            let u = wind.velocity(p.position());
+            p.advance(&model, DT, u, &tilt);
+        }
+    }
+    group.bench_function("procedural_with_wind_warmed", |b| {
+        b.iter_batched_ref(
+            || warmed.clone(),
             |paths| {
                 for p in paths.iter_mut() {
                     let u = wind.velocity(p.position());
@@ -109,26 +182,18 @@ fn step(c: &mut Criterion) {
         )
     });
     group.bench_function("plugin_app_update", |b| {
-        let mut app = App::new();
-        app.add_plugins((MinimalPlugins, TransformPlugin))
-            .insert_resource(Time::<Fixed>::from_seconds(f64::from(DT)))
-            .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-            .add_plugins((WindPlugin::default(), FreeFallPlugin))
-            .insert_resource(FreeFallSettings {
-                ground_height: -1.0e9,
-            });
-        for i in 0..OBJECTS {
-            app.world_mut().spawn((
-                FallingObject {
-                    seed: i as u64,
-                    ..default()
-                },
-                Transform::from_translation(release_point(i)),
-            ));
-        }
-        app.finish();
-        app.cleanup();
-        app.update();
+        let mut app = falling_app(false, true);
+        b.iter(|| app.update())
+    });
+    // The same with `FallLod` and the camera 20 m off one edge of the 60 m square: a few
+    // objects every step, most every second or fourth.
+    // Still air: what the wind's reads cost in the frame.
+    group.bench_function("plugin_app_update_still_air", |b| {
+        let mut app = falling_app(false, false);
+        b.iter(|| app.update())
+    });
+    group.bench_function("plugin_app_update_lod", |b| {
+        let mut app = falling_app(true, true);
         b.iter(|| app.update())
     });
     // What Bevy itself charges for 10 000 entities whose transforms change every frame

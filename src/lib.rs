@@ -86,8 +86,10 @@
 //! For storms of them, a [`LeafCloud`](freefall::LeafCloud) holds up to millions of leaves of one
 //! description in one entity: each the same fall, stored in one array, stepped in parallel with
 //! the same bits on any thread count, with levels of detail around a
-//! [`LodFocus`](freefall::LodFocus) and (feature `render`) one draw call
-//! (`gpu::LeafCloudRenderPlugin`).
+//! [`LodFocus`](lod::LodFocus) and (feature `render`) one draw call
+//! (`gpu::LeafCloudRenderPlugin`). Single objects take the same levels of detail with
+//! [`FallLod`](freefall::FallLod), cloths with [`ClothLod`](cloth::ClothLod) (a coarser grid far
+//! away); see [`lod`].
 //!
 //! # Cloth
 //!
@@ -205,6 +207,7 @@ pub mod gpu;
 mod guard;
 #[cfg(feature = "egui")]
 pub mod inspector;
+pub mod lod;
 pub mod spectrum;
 pub mod wind;
 
@@ -222,6 +225,7 @@ pub mod prelude {
         FallState, FallingObject, Fluid, FreeFallPlugin, FreeFallSettings, Landed, PrimitiveMotion,
         Shape,
     };
+    pub use crate::lod::LodFocus;
     pub use crate::spectrum::fbm;
     pub use crate::wind::{
         SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin, WindSettings,

@@ -8,9 +8,10 @@
 use bevy::prelude::*;
 use bevy_windfall::aero::{AeroState, PlateState};
 use bevy_windfall::freefall::{
-    CloudLod, CloudRegion, FallPreset, FallRng, LeafCloud, LeafCloudState, PrimitiveMotion,
+    CloudLod, CloudRegion, FallLod, FallPreset, FallRng, LeafCloud, LeafCloudState, PrimitiveMotion,
 };
 use bevy_windfall::gpu::{LeafCloudLook, SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
+use bevy_windfall::lod::LodTiers;
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::WindSource;
 
@@ -312,6 +313,12 @@ fn setup(
             Transform::from_translation(spawner.0.midair()).with_rotation(spawner.0.turn());
         let mut entity = commands.spawn((
             leaf(i),
+            // Levels of detail round the camera (its `LodFocus`): within 15 m every fixed step,
+            // to 30 m every second, beyond every fourth; no leaf looks any different for it.
+            FallLod(LodTiers {
+                near: 15.0,
+                far: 30.0,
+            }),
             Mesh3d(mesh.clone()),
             MeshMaterial3d(colours[(i / KINDS.len()) % 3].clone()),
             transform,

@@ -10,6 +10,7 @@
 //! | pole edge | arcs of the fixed edge, W1 and W2, both ends on the pole | eq. 8 |
 //! | constraint | neighbouring yarns at most L apart, from the leading yarn | eq. 7 |
 //! | wind strength | waves grow with the wind, a flag hangs in calm air, a curtain leans downwind | ours |
+//! | levels of detail | far cloths traced on a grid 2 or 4 times coarser, cross-faded | ours: [`ClothLod`] |
 //!
 //! The math lives in plain types ([`ClothSim`], [`DescriptorFilter`]); [`ClothPlugin`] moves
 //! every [`Cloth`] on the fixed timestep and rewrites its mesh once per rendered frame.
@@ -41,6 +42,8 @@ pub use params::{
     ClothError, ClothGrid, ClothParams, ClothWindModel, LeadingYarn, MAX_CLOTH_NODES,
     MAX_CLOTH_SIZE,
 };
-pub use plugin::{Cloth, ClothInvalid, ClothPlugin, ClothState, wind_steps_per_frame};
+pub use plugin::{
+    CLOTH_LOD_FADE, Cloth, ClothInvalid, ClothLod, ClothPlugin, ClothState, wind_steps_per_frame,
+};
 pub use presets::ClothPreset;
 pub use sim::{ClothAttachment, ClothSim, MAX_NOISE_CELLS, PAPER_FPS, air_speed, steps_for_speed};

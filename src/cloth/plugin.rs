@@ -14,6 +14,7 @@ use super::mesh::{cloth_mesh, write_cloth_mesh};
 use super::params::{ClothError, ClothGrid, ClothParams};
 use super::sim::{ClothAttachment, ClothSim};
 use crate::WindfallSystems;
+use crate::lod::{LodFocus, LodTiers};
 use crate::wind::WindField;
 
 /// A flag, banner or curtain. Its node grid is in the entity's local frame (see
@@ -100,6 +101,82 @@ pub struct ClothState {
     pub yaw: f32,
     /// Noise steps per paper frame used in the last step (|v|).
     pub wind_speed: f32,
+    /// The grid's coarseness now and the cross-fade from the last one ([`ClothLod`]).
+    #[reflect(ignore)]
+    detail: Detail,
+}
+
+/// Levels of detail for a [`Cloth`]: with a [`LodFocus`] on the camera, the cloth's shape is
+/// traced on the full grid within `near` m of it, on a grid twice as coarse to `far` and four
+/// times as coarse beyond ([`ClothSim::rebuild_at_stride`]). The mesh keeps every node (the
+/// nodes between are interpolated), and a change of tier cross-fades over
+/// [`CLOTH_LOD_FADE`] seconds, so nothing pops. Without this component a cloth is always
+/// traced on its full grid.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::cloth::ClothLod;
+/// use bevy_windfall::lod::LodTiers;
+/// use bevy_windfall::prelude::*;
+///
+/// fn setup(mut commands: Commands) {
+///     // On the camera (here an entity with only a transform).
+///     commands.spawn((LodFocus, Transform::from_xyz(0.0, 2.0, 10.0)));
+///     // Banners along a castle wall: the far ones cost a sixteenth.
+///     for i in 0..40 {
+///         commands.spawn((
+///             Cloth::default(),
+///             ClothLod(LodTiers { near: 15.0, far: 40.0 }),
+///             Transform::from_xyz(i as f32 * 4.0, 8.0, 0.0),
+///         ));
+///     }
+/// }
+/// # let _ = setup;
+/// ```
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Reflect)]
+#[reflect(Component, Default, Debug)]
+pub struct ClothLod(pub LodTiers);
+
+/// Seconds over which a cloth cross-fades from one grid coarseness to another.
+pub const CLOTH_LOD_FADE: f32 = 0.5;
+
+/// A cloth's grid coarseness: the stride it is traced at, the one it fades from, and how far
+/// the fade has gone (1: done).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Detail {
+    stride: usize,
+    from: usize,
+    fade: f32,
+}
+
+impl Default for Detail {
+    fn default() -> Self {
+        Self {
+            stride: 1,
+            from: 1,
+            fade: 1.0,
+        }
+    }
+}
+
+impl Detail {
+    /// Moves to `target` (a fade that is turned back runs back from where it is) and on by
+    /// `dt` seconds.
+    fn update(&mut self, target: usize, dt: f32) {
+        if target != self.stride {
+            if target == self.from && self.fade < 1.0 {
+                self.fade = 1.0 - self.fade;
+            } else {
+                self.fade = 0.0;
+            }
+            self.from = self.stride;
+            self.stride = target;
+        }
+        let dt = if dt.is_finite() { dt.max(0.0) } else { 0.0 };
+        self.fade = (self.fade + dt / CLOTH_LOD_FADE).min(1.0);
+    }
 }
 
 /// Why a [`Cloth`] has no [`ClothState`] (logged once as a warning when it appears), or, with
@@ -146,6 +223,9 @@ impl Plugin for ClothPlugin {
         let schedule = crate::simulation_schedule(app);
         app.register_type::<Cloth>()
             .register_type::<ClothState>()
+            .register_type::<ClothLod>()
+            .register_type::<LodFocus>()
+            .register_type::<LodTiers>()
             .register_type::<ClothInvalid>()
             .add_observer(init_on_insert)
             // Set up in the frame the cloth is added (or changed), before its mesh is written.
@@ -257,6 +337,7 @@ fn init_cloth(
                 wind_speed: cloth.params.wind_speed,
                 sim,
                 yaw: 0.0,
+                detail: Detail::default(),
             });
         }
         Err(error) => {
@@ -323,20 +404,48 @@ fn step_cloths(
 }
 
 /// Rebuilds each cloth between its last two fixed steps (by how far the frame is into the next
-/// step) and rewrites its mesh in place.
+/// step), on the grid its [`ClothLod`] picks, and rewrites its mesh in place.
+#[allow(clippy::too_many_arguments)]
 fn write_cloth_meshes(
-    mut cloths: Query<(&Cloth, &mut ClothState, &Mesh3d)>,
+    mut cloths: Query<(
+        &Cloth,
+        &mut ClothState,
+        &Mesh3d,
+        &GlobalTransform,
+        Option<&ClothLod>,
+    )>,
+    foci: Query<(Entity, &GlobalTransform), With<LodFocus>>,
     mut meshes: Option<ResMut<Assets<Mesh>>>,
     schedule: Option<Res<crate::WindfallSchedule>>,
     time: Option<Res<Time<Fixed>>>,
+    frame: Option<Res<Time>>,
     mut rotated: Local<Vec<Vec3>>,
+    mut faded: Local<Vec<Vec3>>,
 ) {
     let Some(meshes) = meshes.as_deref_mut() else {
         return;
     };
     let s = crate::overstep(schedule.as_deref(), time.as_deref());
-    for (cloth, mut state, mesh) in &mut cloths {
-        state.sim.rebuild_at(s);
+    let dt = frame.map_or(0.0, |t| t.delta_secs());
+    let focus = crate::lod::focus(&foci);
+    for (cloth, mut state, mesh, transform, lod) in &mut cloths {
+        let state = &mut *state;
+        let target = lod.map_or(1, |l| {
+            l.0.steps_at_squared(focus.map(|f| f.distance_squared(transform.translation())))
+        }) as usize;
+        state.detail.update(target, dt);
+        let Detail { stride, from, fade } = state.detail;
+        if fade < 1.0 {
+            state.sim.rebuild_at_stride(s, from);
+            faded.clear();
+            faded.extend_from_slice(state.sim.positions());
+            state.sim.rebuild_at_stride(s, stride);
+            state
+                .sim
+                .fade_from(&faded, fade * fade * (3.0 - 2.0 * fade));
+        } else {
+            state.sim.rebuild_at_stride(s, stride);
+        }
         let Some(mut mesh) = meshes.get_mut(&mesh.0) else {
             continue;
         };

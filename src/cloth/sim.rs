@@ -195,6 +195,17 @@ impl ClothSim {
         &self.positions
     }
 
+    /// Sets every node to `from[i]` lerped toward where it is by `w` ∈ [0, 1] (a cross-fade
+    /// from another shape of the same grid); a `from` of another length changes nothing.
+    pub(crate) fn fade_from(&mut self, from: &[Vec3], w: f32) {
+        if from.len() == self.positions.len() {
+            let w = w.clamp(0.0, 1.0);
+            for (p, f) in self.positions.iter_mut().zip(from) {
+                *p = f.lerp(*p, w);
+            }
+        }
+    }
+
     /// Noise cells moved along the yarns so far.
     pub fn shift_along(&self) -> f64 {
         self.along
@@ -237,13 +248,23 @@ impl ClothSim {
     ///   3 m/s;
     /// - a curtain leans downwind (+Z) by atan(0.028 U²): 35° at 5 m/s.
     pub fn rebuild(&mut self) {
-        self.rebuild_with(self.along, self.across, self.time);
+        self.rebuild_with(self.along, self.across, self.time, 1);
     }
 
     /// [`ClothSim::rebuild`] a fraction `s` ∈ [0, 1] of the way from the step before the last
     /// one to the last: the shape between fixed steps, so a cloth drawn every frame moves
     /// smoothly at any frame rate (1 is [`ClothSim::rebuild`]).
     pub fn rebuild_at(&mut self, s: f32) {
+        self.rebuild_at_stride(s, 1);
+    }
+
+    /// [`ClothSim::rebuild_at`] on a grid `stride` times coarser (1 is the full grid; see
+    /// [`ClothLod`](super::ClothLod)): every `stride`-th yarn is traced, in segments `stride`
+    /// times longer that read the noise at their middle, and the nodes between are placed
+    /// evenly along them; the yarns between are interpolated, each moved so its pole-edge node
+    /// is where eq. 8 puts it. The mesh keeps every node, so a change of stride changes no
+    /// topology. The cost falls about as the square of the stride.
+    pub fn rebuild_at_stride(&mut self, s: f32, stride: usize) {
         let back = 1.0
             - f64::from(if s.is_finite() {
                 s.clamp(0.0, 1.0)
@@ -255,12 +276,15 @@ impl ClothSim {
             self.along - back * along,
             self.across - back * across,
             self.time - back * time,
+            stride,
         );
     }
 
-    fn rebuild_with(&mut self, along: f64, across: f64, time: f64) {
+    fn rebuild_with(&mut self, along: f64, across: f64, time: f64, stride: usize) {
         let (rows, columns) = (self.grid.rows, self.grid.columns);
         let segments = columns - 1;
+        let n = stride.clamp(1, segments);
+        let coarse = segments.div_ceil(n);
         let segment = self.grid.segment();
         let spacing = self.grid.row_spacing();
         let strength = Strength::new(self.air_speed(), self.params.reference_speed);
@@ -269,6 +293,8 @@ impl ClothSim {
             ClothWindModel::NonFrozen { .. } => time * f64::from(PAPER_FPS),
         };
         let step = CELLS_PER_YARN as f64 / segments as f64;
+        // A coarse segment reads the noise at its middle.
+        let middle = step * (n - 1) as f64 * 0.5;
         let hold = (0.3 * segments as f32).max(1.0);
         let (lean_sin, lean_cos) = strength.lean.sin_cos();
         for (j, (turn, keep)) in self.droop.iter_mut().zip(&mut self.keep).enumerate() {
@@ -283,50 +309,79 @@ impl ClothSim {
         let twist = f64::from(self.params.twist);
         if twist == 0.0 {
             self.sheet
-                .column_taps(-along, step, segments, &mut self.taps);
+                .column_taps(middle - along, step * n as f64, coarse, &mut self.taps);
         }
-        for k in 0..rows {
+        let edge = |k: usize| match self.attachment {
+            ClothAttachment::Pole => {
+                let edge = pole_edge(
+                    k,
+                    rows,
+                    self.params.bow * strength.gain * self.grid.height,
+                    self.params.lean * strength.gain * self.grid.height,
+                );
+                Vec3::new(edge.x, -(k as f32) * spacing, edge.y)
+            }
+            ClothAttachment::Rod => Vec3::new(k as f32 * spacing, 0.0, 0.0),
+        };
+        // Traced yarns: every n-th and the last.
+        for k in (0..rows)
+            .step_by(n)
+            .chain(((rows - 1) % n != 0).then_some(rows - 1))
+        {
             let row = k as f64 + across;
             if twist != 0.0 {
-                self.sheet
-                    .column_taps(twist * k as f64 - along, step, segments, &mut self.taps);
+                self.sheet.column_taps(
+                    middle + twist * k as f64 - along,
+                    step * n as f64,
+                    coarse,
+                    &mut self.taps,
+                );
             }
             self.sheet
-                .blend_line(frame, row, &self.taps, &mut self.directions);
-            let mut p = match self.attachment {
-                ClothAttachment::Pole => {
-                    let edge = pole_edge(
-                        k,
-                        rows,
-                        self.params.bow * strength.gain * self.grid.height,
-                        self.params.lean * strength.gain * self.grid.height,
-                    );
-                    Vec3::new(edge.x, -(k as f32) * spacing, edge.y)
-                }
-                ClothAttachment::Rod => Vec3::new(k as f32 * spacing, 0.0, 0.0),
-            };
+                .blend_line(frame, row, &self.taps, &mut self.directions[..coarse]);
+            let mut p = edge(k);
             self.positions[k * columns] = p;
             let out = &mut self.positions[k * columns + 1..(k + 1) * columns];
-            let yarn = self.directions.iter().zip(&self.keep).zip(&self.droop);
-            match self.attachment {
-                ClothAttachment::Pole => {
-                    for (node, ((d, keep), down)) in out.iter_mut().zip(yarn) {
-                        let d = (Vec2::X + (*d - Vec2::X) * *keep).normalize_or(Vec2::X);
-                        p += Vec3::new(d.x * down.x, -d.x * down.y, d.y) * segment;
-                        *node = p;
-                    }
-                }
-                ClothAttachment::Rod => {
-                    for (node, ((d, keep), _)) in out.iter_mut().zip(yarn) {
+            for (c, d) in self.directions[..coarse].iter().enumerate() {
+                let first = c * n;
+                let len = n.min(segments - first);
+                let mid = first + len / 2;
+                let (keep, down) = (self.keep[mid], self.droop[mid]);
+                let d = (Vec2::X + (*d - Vec2::X) * keep).normalize_or(Vec2::X);
+                let v = match self.attachment {
+                    ClothAttachment::Pole => Vec3::new(d.x * down.x, -d.x * down.y, d.y) * segment,
+                    ClothAttachment::Rod => {
                         // Down the curtain, leaning downwind.
-                        let d = (Vec2::X + (*d - Vec2::X) * *keep).normalize_or(Vec2::X);
                         let (a, b) = (
                             d.x * lean_cos - d.y * lean_sin,
                             d.x * lean_sin + d.y * lean_cos,
                         );
-                        p += Vec3::new(0.0, -a, b) * segment;
-                        *node = p;
+                        Vec3::new(0.0, -a, b) * segment
                     }
+                };
+                if len == 1 {
+                    p += v;
+                    out[first] = p;
+                } else {
+                    for (i, node) in out[first..first + len].iter_mut().enumerate() {
+                        *node = p + v * (i + 1) as f32;
+                    }
+                    p += v * len as f32;
+                }
+            }
+        }
+        // Yarns between: interpolated, moved onto their own pole-edge node.
+        if n > 1 {
+            for k in (0..rows).filter(|k| k % n != 0 && *k != rows - 1) {
+                let (k0, k1) = (k / n * n, (k / n * n + n).min(rows - 1));
+                let t = (k - k0) as f32 / (k1 - k0) as f32;
+                let shift = edge(k) - edge(k0).lerp(edge(k1), t);
+                for j in 0..columns {
+                    let (a, b) = (
+                        self.positions[k0 * columns + j],
+                        self.positions[k1 * columns + j],
+                    );
+                    self.positions[k * columns + j] = a.lerp(b, t) + shift;
                 }
             }
         }

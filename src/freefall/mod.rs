@@ -13,6 +13,7 @@
 //! | wind | p ← p + v dt + Δf, v relaxing to u(p) over a response time; tilt θ = W N(t) | §4.2, eq. 15 |
 //! | presets | coin, paper, leaves, card, samara with their chains | [`FallPreset`] |
 //! | clouds | 100 000 leaves in one entity, levels of detail | [`LeafCloud`] ([`cloud`]) |
+//! | levels of detail | far objects stepped every 2nd / 4th step, shown smoothly | [`FallLod`], [`crate::lod`] |
 //!
 //! | quantity | unit |
 //! |---|---|
@@ -29,6 +30,7 @@ pub mod cloud;
 mod database;
 #[cfg(feature = "gizmos")]
 mod gizmos;
+mod lod;
 mod markov;
 mod model;
 mod motion;
@@ -39,6 +41,7 @@ mod presets;
 mod random;
 mod regime;
 mod release;
+mod tiers;
 mod tilt;
 
 pub use cloud::{
@@ -50,6 +53,7 @@ pub use database::{
 };
 #[cfg(feature = "gizmos")]
 pub use gizmos::{FallGizmos, FallGizmosPlugin, FallTrail, motion_color};
+pub use lod::FallLod;
 pub use markov::{BoundedChain, CHAIN_STEP, MarkovChain, MarkovError, motion_class_count};
 pub use model::FallModel;
 pub use motion::{CHAOTIC_MIN_TIME, FallScales, Glide, Piece, STROUHAL, SwingChoice};

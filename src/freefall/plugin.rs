@@ -9,15 +9,18 @@ use bevy::math::{Quat, Vec3};
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::time::{Fixed, Time};
-use bevy::transform::components::Transform;
+use bevy::transform::components::{GlobalTransform, Transform};
 
+use super::lod::{FallClock, FallLod};
 use super::markov::MarkovChain;
 use super::model::FallModel;
 use super::motion::{FallScales, STROUHAL};
 use super::path::{FallPath, StepOutcome, WindTilt};
 use super::regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape, regime};
 use super::release::FallRelease;
+use super::tiers::TierClock;
 use crate::WindfallSystems;
+use crate::lod::LodFocus;
 use crate::wind::WindField;
 
 /// A leaf, a sheet of paper, a coin: anything thin that falls through air or water.
@@ -189,6 +192,10 @@ pub struct FallState {
     /// The component this fall was released for (a change of it releases again).
     #[reflect(ignore)]
     released_for: Option<FallingObject>,
+    /// When the fall was last stepped, for an object with [`FallLod`] (or one easing back to
+    /// full detail after it was removed).
+    #[reflect(ignore)]
+    tier: Option<TierClock>,
 }
 
 impl FallState {
@@ -308,9 +315,13 @@ impl Plugin for FreeFallPlugin {
             .register_type::<FallState>()
             .register_type::<FallingObjectInvalid>()
             .register_type::<FreeFallSettings>()
+            .register_type::<FallLod>()
+            .register_type::<LodFocus>()
+            .register_type::<crate::lod::LodTiers>()
             .register_type::<FallModel>()
             .register_type::<super::FallPreset>()
             .init_resource::<FreeFallSettings>()
+            .init_resource::<FallClock>()
             .add_message::<Landed>()
             .add_observer(release_on_insert)
             .add_systems(schedule, step_objects.in_set(WindfallSystems::Simulate))
@@ -413,6 +424,7 @@ fn release(
                 regime: Some(regime),
                 path: Some(path),
                 released_for: Some(object.clone()),
+                tier: None,
             }
         }
         Err(error) => {
@@ -422,6 +434,7 @@ fn release(
                 regime: None,
                 path: None,
                 released_for: Some(object.clone()),
+                tier: None,
             }
         }
     };
@@ -429,12 +442,16 @@ fn release(
 
 /// Steps every fall; objects are independent, so they run in parallel (with Bevy's
 /// `multi_threaded` feature) and the landings are written sorted by entity, so the messages do
-/// not depend on the thread schedule.
+/// not depend on the thread schedule. An object with [`FallLod`] is stepped when its tier is due
+/// (see [`crate::lod`]), over the time since its last step.
+#[allow(clippy::too_many_arguments)]
 fn step_objects(
-    mut objects: Query<(Entity, &FallingObject, &mut FallState)>,
+    mut objects: Query<(Entity, &FallingObject, &mut FallState, Option<&FallLod>)>,
+    foci: Query<(Entity, &GlobalTransform), With<LodFocus>>,
     wind: Option<Res<WindField>>,
     model: Option<Res<FallModel>>,
     time: Res<Time>,
+    mut clock: ResMut<FallClock>,
     mut landed: MessageWriter<Landed>,
     mut warned: Local<bool>,
 ) {
@@ -447,22 +464,51 @@ fn step_objects(
     };
     *warned = false;
     let dt = time.delta_secs();
+    clock.tick(dt);
+    let clock = *clock;
+    let focus = crate::lod::focus(&foci);
     let wind = wind.as_deref();
     let reference_speed = wind.map_or(1.0, |w| w.config().reference_speed);
     let landings = Mutex::new(Vec::new());
     objects
         .par_iter_mut()
-        .for_each(|(entity, object, mut state)| {
+        .for_each(|(entity, object, mut state, lod)| {
+            let state = &mut *state;
             let Some(path) = state.path.as_mut() else {
                 return;
             };
+            // Its first step with levels of detail is taken at once (a fall just let go does
+            // not wait for its turn), as if it had been stepped on the step before.
+            let first = state.tier.is_none() && lod.is_some();
+            if first {
+                state.tier = Some(TierClock::stepped_at(clock.seconds - f64::from(dt), dt));
+            }
+            let tier = lod.map_or(1, |l| {
+                l.0.steps_at_squared(focus.map(|f| f.distance_squared(path.position())))
+            });
+            if !first && !clock.due(tier, entity.index_u32()) {
+                return;
+            }
             // Resting objects feel the wind too: a strong enough one lifts them again.
             let velocity = wind.map_or(Vec3::ZERO, |w| w.velocity(path.position()));
             let tilt = WindTilt {
                 max_angle: object.wind_tilt,
                 reference_speed,
             };
-            if path.advance(&model, dt, velocity, &tilt) == StepOutcome::Landed {
+            let outcome = match state.tier.as_mut() {
+                Some(t) => {
+                    let next = clock.steps_to_next(tier, entity.index_u32()) as f32 * dt;
+                    let (outcome, _) =
+                        t.advance(path, &model, clock.seconds, next, velocity, &tilt);
+                    // Back at full detail for good (the component was removed) once eased.
+                    if lod.is_none() && !t.easing(clock.seconds) {
+                        state.tier = None;
+                    }
+                    outcome
+                }
+                None => path.advance(&model, dt, velocity, &tilt),
+            };
+            if outcome == StepOutcome::Landed {
                 let message = Landed {
                     entity,
                     position: path.position(),
@@ -485,11 +531,17 @@ fn pose_objects(
     mut objects: Query<(&FallState, &mut Transform)>,
     schedule: Option<Res<crate::WindfallSchedule>>,
     time: Option<Res<Time<Fixed>>>,
+    clock: Option<Res<FallClock>>,
 ) {
     let s = crate::overstep(schedule.as_deref(), time.as_deref());
+    let clock = clock.as_deref().copied().unwrap_or_default();
+    let now = clock.seconds + f64::from(s * clock.last_dt);
     objects.par_iter_mut().for_each(|(state, mut transform)| {
         if let Some(path) = state.path() {
-            let (position, rotation): (Vec3, Quat) = path.smoothed(s);
+            let (position, rotation): (Vec3, Quat) = match &state.tier {
+                Some(tier) => tier.shown(path, now),
+                None => path.smoothed(s),
+            };
             transform.translation = position;
             transform.rotation = rotation;
         }

@@ -13,6 +13,7 @@ use crate::freefall::motion::FallScales;
 use crate::freefall::path::{FallPath, StepOutcome, WindTilt};
 use crate::freefall::random::FallRng;
 use crate::freefall::release::FallRelease;
+use crate::freefall::tiers::TierClock;
 use crate::wind::WindField;
 
 /// Leaves a parallel task steps together: big enough that the task costs little beside its
@@ -23,64 +24,19 @@ pub const CLOUD_CHUNK: usize = 512;
 #[derive(Clone, Debug)]
 struct Leaf {
     path: FallPath,
-    /// The cloud's clock at the leaf's last step, s.
-    updated: f64,
-    /// Seconds the last step covered (one to four fixed steps, by its tier).
-    span: f32,
+    /// When it was last stepped, over how long, and the easing after a change of tier.
+    tier: TierClock,
     /// Seconds on the ground since it landed.
     resting: f32,
     /// Times it was let go (its first release counts).
     releases: u32,
-    /// Set when a step came sooner than the one before it (a change to a finer tier): what
-    /// was shown then, eased out so the shown pose never jumps.
-    /// (Boxed: rare, and the leaves stream through the cache every step.)
-    from: Option<Box<Easing>>,
-}
-
-/// How far the shown pose was from the path when a leaf was stepped, eased out by `end`.
-#[derive(Clone, Copy, Debug)]
-struct Easing {
-    /// Shown position − the path's, at `start`.
-    offset: Vec3,
-    /// Shown rotation × the path's inverse, at `start`.
-    turn: Quat,
-    start: f64,
-    /// The cloud's clock when the easing is over (it is not pushed back by later steps).
-    end: f64,
-}
-
-impl Easing {
-    /// The share of the easing still to go at `now`: 1 at its start, 0 from its end.
-    fn left(&self, now: f64) -> f32 {
-        let length = (self.end - self.start).max(1e-9);
-        ((self.end - now) / length).clamp(0.0, 1.0) as f32
-    }
 }
 
 impl Leaf {
-    /// The share of its last step's span that has passed at `now`, in [0, 1].
-    fn share(&self, now: f64) -> f32 {
-        if self.span > 0.0 {
-            ((now - self.updated) as f32 / self.span).clamp(0.0, 1.0)
-        } else {
-            1.0
-        }
-    }
-
-    /// The pose shown at `now`: the path's Bézier at the share of the span that has passed,
-    /// plus what is left of an [`Easing`].
+    /// The pose shown at `now`.
     fn shown(&self, now: f64) -> LeafPose {
-        let (position, rotation) = self.path.smoothed(self.share(now));
-        match self.from.as_deref() {
-            Some(e) => {
-                let left = e.left(now);
-                LeafPose {
-                    position: position + e.offset * left,
-                    rotation: (Quat::IDENTITY.lerp(e.turn, left) * rotation).normalize(),
-                }
-            }
-            None => LeafPose { position, rotation },
-        }
+        let (position, rotation) = self.tier.shown(&self.path, now);
+        LeafPose { position, rotation }
     }
 }
 
@@ -179,11 +135,9 @@ impl CloudLeaves {
             let path = cloud.release(model, index, 0, false);
             cloud.leaves.push(Leaf {
                 path,
-                updated: 0.0,
-                span: 0.0,
+                tier: TierClock::default(),
                 resting: 0.0,
                 releases: 1,
-                from: None,
             });
         }
         cloud
@@ -274,9 +228,7 @@ impl CloudLeaves {
             leaf.path = path;
             leaf.releases += 1;
             leaf.resting = 0.0;
-            leaf.span = 0.0;
-            leaf.updated = self.clock;
-            leaf.from = None;
+            leaf.tier = TierClock::stepped_at(self.clock, 0.0);
             report.recycled += 1;
             self.resting -= 1;
         }
@@ -398,34 +350,17 @@ fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkRepo
             report.resting += usize::from(leaf.path.landed());
             continue;
         }
-        let waited = (ctx.clock - leaf.updated) as f32;
         let wind = step.wind.map_or(Vec3::ZERO, |w| w.velocity(position));
-        // Stepped before the last span was shown (a finer tier), or still easing: what is shown
-        // now, to ease from.
-        let running = leaf
-            .from
-            .as_ref()
-            .map(|e| e.end)
-            .filter(|&end| end > ctx.clock);
-        // (The share is a ratio of f64 clock differences rounded to f32: a step of the same
-        // span can come out a rounding short of 1, which is no lag worth easing.)
-        let lagging = leaf.share(ctx.clock) < 1.0 - 1e-3;
-        let before = (running.is_some() || lagging).then(|| leaf.shown(ctx.clock));
-        // A new easing lasts two of the spans before (it catches up at most half a step per
-        // step); one under way keeps its end.
-        let end = running.unwrap_or(ctx.clock + 2.0 * f64::from(leaf.span.max(waited)));
-        let outcome = leaf.path.advance(step.model, waited, wind, &step.tilt);
-        leaf.from = before.map(|shown| {
-            let (position, rotation) = leaf.path.smoothed(0.0);
-            Box::new(Easing {
-                offset: shown.position - position,
-                turn: (shown.rotation * rotation.inverse()).normalize(),
-                start: ctx.clock,
-                end,
-            })
-        });
-        leaf.updated = ctx.clock;
-        leaf.span = waited;
+        // Its tier's next turn is `every` steps on.
+        let next = every as f32 * step.dt;
+        let (outcome, waited) = leaf.tier.advance(
+            &mut leaf.path,
+            step.model,
+            ctx.clock,
+            next,
+            wind,
+            &step.tilt,
+        );
         report.advanced += 1;
         match outcome {
             StepOutcome::Landed => {

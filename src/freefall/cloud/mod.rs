@@ -34,8 +34,9 @@
 mod leaves;
 mod plugin;
 
+pub use crate::lod::LodFocus;
 pub use leaves::{CLOUD_CHUNK, CloudLeaves, CloudStep, CloudStepReport, LeafPose};
-pub use plugin::{LeafCloudInvalid, LeafCloudPlugin, LeafCloudState, LodFocus};
+pub use plugin::{LeafCloudInvalid, LeafCloudPlugin, LeafCloudState};
 
 use bevy::ecs::prelude::*;
 use bevy::math::Vec3;
@@ -70,48 +71,11 @@ impl Default for CloudRegion {
     }
 }
 
-/// The distances, m, from the [`LodFocus`] at which leaves are stepped every second and every
-/// fourth fixed step (see the [module](self)).
-#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
-#[reflect(Default, Debug)]
-pub struct CloudLod {
-    /// Nearer than this: every step.
-    pub near: f32,
-    /// Nearer than this: every second step; farther: every fourth.
-    pub far: f32,
-}
-
-impl Default for CloudLod {
-    /// Every step within 25 m, every second to 60 m, every fourth beyond.
-    fn default() -> Self {
-        Self {
-            near: 25.0,
-            far: 60.0,
-        }
-    }
-}
-
-impl CloudLod {
-    /// Every leaf every step, at any distance.
-    pub const FULL: Self = Self {
-        near: f32::INFINITY,
-        far: f32::INFINITY,
-    };
-
-    /// The period, in fixed steps, of a leaf `distance` m from the focus (`None`, NaN: 1).
-    pub fn steps_at(&self, distance: Option<f32>) -> u32 {
-        self.steps_at_squared(distance.map(|d| d * d.abs()))
-    }
-
-    /// [`Self::steps_at`] from the squared distance (no square root per leaf).
-    pub(crate) fn steps_at_squared(&self, squared: Option<f32>) -> u32 {
-        match squared {
-            Some(d2) if d2 >= self.far * self.far.abs() => 4,
-            Some(d2) if d2 >= self.near * self.near.abs() => 2,
-            _ => 1,
-        }
-    }
-}
+/// The levels of detail of a cloud's leaves: stepped every fixed step within `near` m of the
+/// [`LodFocus`], every second to `far`, every fourth beyond (see the [module](self)). The
+/// name clouds had first for [`LodTiers`](crate::lod::LodTiers), which single objects
+/// ([`FallLod`](crate::freefall::FallLod)) and cloths share.
+pub type CloudLod = crate::lod::LodTiers;
 
 /// A cloud of `count` falling leaves (or paper, confetti, ash) let go in `region`.
 ///
@@ -211,11 +175,13 @@ impl LeafCloud {
                 "must be finite, within ±MAX_COORDINATE and ≥ region.min on every axis",
             ));
         }
-        if self.lod.near.is_nan() || self.lod.near < 0.0 {
-            return Err(invalid("lod.near", self.lod.near, "must be ≥ 0"));
-        }
-        if self.lod.far.is_nan() || self.lod.far < self.lod.near {
-            return Err(invalid("lod.far", self.lod.far, "must be ≥ lod.near"));
+        if let Err((field, value, reason)) = self.lod.check() {
+            let field = if field == "near" {
+                "lod.near"
+            } else {
+                "lod.far"
+            };
+            return Err(invalid(field, value, reason));
         }
         if let Some(t) = self.recycle_after
             && !(t.is_finite() && t >= 0.0)

@@ -1,8 +1,7 @@
-//! ECS glue: [`LeafCloudState`], [`LodFocus`] and the [`LeafCloudPlugin`].
+//! ECS glue: [`LeafCloudState`] and the [`LeafCloudPlugin`].
 
 use bevy::app::{App, Plugin, PostUpdate};
 use bevy::ecs::prelude::*;
-use bevy::math::Vec3;
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::tasks::ComputeTaskPool;
@@ -10,10 +9,11 @@ use bevy::time::{Fixed, Time};
 use bevy::transform::components::GlobalTransform;
 
 use super::leaves::{CloudLeaves, CloudStep, CloudStepReport, LeafPose};
-use super::{CloudLod, CloudRegion, LeafCloud};
+use super::{CloudRegion, LeafCloud};
 use crate::WindfallSystems;
 use crate::freefall::path::WindTilt;
 use crate::freefall::{FallModel, FreeFallError, FreeFallSettings};
+use crate::lod::{LodFocus, LodTiers};
 use crate::wind::WindField;
 
 /// Runtime state of a [`LeafCloud`] (required component): its leaves, what the last step did
@@ -55,13 +55,6 @@ impl LeafCloudState {
 #[reflect(Component, Debug)]
 pub struct LeafCloudInvalid(pub FreeFallError);
 
-/// Where the levels of detail of every [`LeafCloud`] are measured from: put it on the camera.
-/// With several, the lowest `Entity` (by its ordering) counts; with none, every leaf is at full
-/// detail.
-#[derive(Component, Clone, Copy, Debug, Default, Reflect)]
-#[reflect(Component, Default, Debug)]
-pub struct LodFocus;
-
 /// Steps every [`LeafCloud`] on the fixed timestep (in [`WindfallSystems::Simulate`]) and poses
 /// its leaves once per frame (in [`WindfallSystems::WriteBack`]).
 #[derive(Default)]
@@ -79,7 +72,7 @@ impl Plugin for LeafCloudPlugin {
             .register_type::<LeafCloudInvalid>()
             .register_type::<LodFocus>()
             .register_type::<CloudRegion>()
-            .register_type::<CloudLod>()
+            .register_type::<LodTiers>()
             .init_resource::<FreeFallSettings>()
             .add_observer(release_on_insert)
             .add_systems(schedule, step_clouds.in_set(WindfallSystems::Simulate))
@@ -162,14 +155,6 @@ fn release(
     }
 }
 
-/// The focus: the [`LodFocus`] with the lowest entity index, where it is.
-fn focus(foci: &Query<(Entity, &GlobalTransform), With<LodFocus>>) -> Option<Vec3> {
-    foci.iter()
-        .min_by_key(|(entity, _)| *entity)
-        .map(|(_, t)| t.translation())
-        .filter(|p| p.is_finite())
-}
-
 fn step_clouds(
     mut clouds: Query<(&LeafCloud, &mut LeafCloudState)>,
     foci: Query<(Entity, &GlobalTransform), With<LodFocus>>,
@@ -180,7 +165,7 @@ fn step_clouds(
     let Some(model) = model else {
         return;
     };
-    let focus = focus(&foci);
+    let focus = crate::lod::focus(&foci);
     let reference_speed = wind.as_deref().map_or(1.0, |w| w.config().reference_speed);
     let pool = ComputeTaskPool::try_get().map(|p| &**p);
     for (cloud, mut state) in &mut clouds {

@@ -1,0 +1,70 @@
+//! Levels of detail for single falling objects: [`FallLod`] and the clock the tiers run on.
+
+use bevy::ecs::prelude::*;
+use bevy::reflect::Reflect;
+use bevy::reflect::std_traits::ReflectDefault;
+
+use crate::lod::LodTiers;
+
+/// Levels of detail for a single [`FallingObject`](super::FallingObject): with a
+/// [`LodFocus`](crate::lod::LodFocus) on the camera, the object is stepped every fixed step
+/// within `near` m of it, every second step to `far`, every fourth beyond, over the whole time
+/// since its last step, exactly as a [`LeafCloud`](super::LeafCloud)'s leaves are. It follows
+/// the same path (its pieces are sampled by time), reads the wind less often, moves smoothly
+/// between its steps, and eases back without a jump when it comes nearer. Without this
+/// component an object is stepped every fixed step.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::freefall::FallLod;
+/// use bevy_windfall::prelude::*;
+///
+/// fn setup(mut commands: Commands) {
+///     // On the camera (here an entity with only a transform).
+///     commands.spawn((LodFocus, Transform::from_xyz(0.0, 2.0, 10.0)));
+///     for i in 0..1000 {
+///         commands.spawn((
+///             FallingObject { seed: i, ..default() },
+///             FallLod::default(),
+///             Transform::from_xyz(i as f32 * 0.5, 10.0, 0.0),
+///         ));
+///     }
+/// }
+/// # let _ = setup;
+/// ```
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Reflect)]
+#[reflect(Component, Default, Debug)]
+pub struct FallLod(pub LodTiers);
+
+/// The clock the tiers of single objects run on: seconds and fixed steps since the plugin
+/// started, and the last step's length.
+#[derive(Resource, Clone, Copy, Debug, Default)]
+pub(crate) struct FallClock {
+    pub seconds: f64,
+    pub steps: u64,
+    pub last_dt: f32,
+}
+
+impl FallClock {
+    /// One more fixed step of `dt` seconds.
+    pub fn tick(&mut self, dt: f32) {
+        self.seconds += f64::from(dt);
+        self.steps += 1;
+        self.last_dt = dt;
+    }
+
+    /// Whether an object of `tier` (1, 2 or 4) with index `index` is due on this step: the
+    /// objects of a tier take turns, so the work per step is even.
+    pub fn due(&self, tier: u32, index: u32) -> bool {
+        (self.steps + u64::from(index)) & u64::from(tier.max(1) - 1) == 0
+    }
+
+    /// Fixed steps from this one to the next on which an object of `tier` with index `index`
+    /// is due (1 to `tier`).
+    pub fn steps_to_next(&self, tier: u32, index: u32) -> u32 {
+        let tier = tier.max(1);
+        tier - ((self.steps + u64::from(index)) & u64::from(tier - 1)) as u32
+    }
+}
