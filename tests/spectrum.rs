@@ -110,20 +110,25 @@ fn paired_fields_are_real_and_independent() {
 #[test]
 fn fields_tile_seamlessly() {
     // Differences across the wrap-around seam look like differences between any neighbours.
+    // One seam is 128 strongly correlated differences, so its mean square scatters by about
+    // ±25 % (0.76–1.47 of the inner ones over 8 seeds); over 16 fields it is within 25 %. A
+    // non-periodic field would jump by about √2 σ at the seam: a ratio near 20 here.
     let (n, m) = (128, 128);
-    let f = fbm(&[n, m], 5.0 / 3.0, 8);
     let sq = |a: f32, b: f32| f64::from(a - b).powi(2);
-    let seam: f64 = (0..n).map(|i| sq(f[i * m], f[i * m + m - 1])).sum::<f64>() / n as f64;
-    let inner: f64 = (0..n)
-        .flat_map(|i| (1..m).map(move |j| (i, j)))
-        .map(|(i, j)| sq(f[i * m + j], f[i * m + j - 1]))
-        .sum::<f64>()
-        / (n * (m - 1)) as f64;
+    let (mut seam, mut inner) = (0.0, 0.0);
+    for seed in 1..=16 {
+        let f = fbm(&[n, m], 5.0 / 3.0, seed);
+        seam += (0..n).map(|i| sq(f[i * m], f[i * m + m - 1])).sum::<f64>() / n as f64;
+        inner += (0..n)
+            .flat_map(|i| (1..m).map(move |j| (i, j)))
+            .map(|(i, j)| sq(f[i * m + j], f[i * m + j - 1]))
+            .sum::<f64>()
+            / (n * (m - 1)) as f64;
+    }
     assert!(
-        (seam / inner - 1.0).abs() < 0.3,
+        (seam / inner - 1.0).abs() < 0.25,
         "seam {seam} inner {inner}"
     );
-    // A non-periodic field would jump by about √2 σ at the seam: ratio ≫ 1.
 }
 
 #[test]
@@ -158,8 +163,8 @@ fn output_is_portable_across_machines() {
     assert_eq!(fingerprint(&fbm(&[256], 5.0 / 3.0, 42)), GOLDEN_1D);
     assert_eq!(fingerprint(&fbm(&[12, 10, 9], 1.0, 7)), GOLDEN_3D);
 }
-const GOLDEN_1D: u64 = 11476844852306633228;
-const GOLDEN_3D: u64 = 6473208159806308235;
+const GOLDEN_1D: u64 = 12228083372507955431;
+const GOLDEN_3D: u64 = 2228581054304297266;
 
 #[test]
 fn bad_input_gives_a_named_error() {

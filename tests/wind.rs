@@ -47,11 +47,12 @@ fn frozen_time_series_has_kolmogorov_slope() {
         (SpatialMode::Plane, [256, 256], 32),
         (SpatialMode::Volume { vertical_nodes: 64 }, [64, 64], 12),
     ] {
-        // Low frequencies have few modes per realisation: average over independent seeds.
+        // Low frequencies have few modes per realisation: average over independent seeds (the
+        // slope of 16 seeds scatters by ±0.05 from block to block, of 48 by about ±0.03).
         // One sample per cell of travel reads the nodes themselves; finer sampling adds the
         // sinc² roll-off of linear interpolation (−0.1 in slope at an eighth of Nyquist).
         let mut total: [Vec<f64>; 3] = Default::default();
-        for seed in 0..16 {
+        for seed in 0..48 {
             let field = WindField::new(WindConfig {
                 spatial,
                 grid,
@@ -80,30 +81,34 @@ fn frozen_time_series_has_kolmogorov_slope() {
 
 #[test]
 fn components_follow_eq_12_ratios_and_surface_layer_level() {
-    let field = WindField::new(config()).unwrap();
-    let c = field.config();
     // What anemometers at the reference height record while the frozen pattern blows past for
-    // one period of the grid: eight masts across the wind, sampled between the nodes.
+    // one period of the grid: eight masts across the wind, sampled between the nodes. One
+    // realisation's variances rest on a few low modes (σv/σu ranges over 0.66–1.07 for eight
+    // seeds): the variances are pooled over 32 seeds.
     let mut samples: [Vec<f32>; 3] = Default::default();
-    let period = c.grid[0] as f32 * c.cell_size / c.reference_speed;
-    let steps = 4 * c.grid[0];
-    for mast in 0..8 {
-        let p = Vec3::new(
-            0.37,
-            c.reference_height,
-            (mast as f32 * 7.3 + 0.41) * c.cell_size,
-        );
-        for i in 0..steps {
-            let v = field.velocity_at(p, i as f32 * period / steps as f32);
-            for (axis, s) in samples.iter_mut().enumerate() {
-                s.push(v[axis]);
+    for seed in 21..53 {
+        let field = WindField::new(WindConfig { seed, ..config() }).unwrap();
+        let c = field.config();
+        let period = c.grid[0] as f32 * c.cell_size / c.reference_speed;
+        let steps = 4 * c.grid[0];
+        for mast in 0..8 {
+            let p = Vec3::new(
+                0.37,
+                c.reference_height,
+                (mast as f32 * 7.3 + 0.41) * c.cell_size,
+            );
+            for i in 0..steps {
+                let v = field.velocity_at(p, i as f32 * period / steps as f32);
+                for (axis, s) in samples.iter_mut().enumerate() {
+                    s.push(v[axis]);
+                }
             }
         }
     }
     let sd: Vec<f64> = samples.iter().map(|s| mean_variance(s).1.sqrt()).collect();
-    let u_star = f64::from(field.friction_velocity());
-    // World axes: x along the wind (u), y up (w), z across (v). Eight masts see a sample of
-    // the field, so the ratios hold to a few per cent, and interpolating between nodes smooths
+    let u_star = f64::from(WindField::new(config()).unwrap().friction_velocity());
+    // World axes: x along the wind (u), y up (w), z across (v). Pooled, the ratios hold to a
+    // few per cent, and interpolating between nodes smooths
     // every component alike (a little below the nodes' 2.5 u*).
     assert!(
         (sd[2] / sd[0] - 0.88).abs() < 0.06,

@@ -9,62 +9,131 @@ use super::grid::GridShape;
 /// Without the aliases, a line through an n-D field misses the power of the transverse
 /// frequencies beyond Nyquist and its spectrum steepens (slope −1.13 instead of −1 for β = 1 on a
 /// 128³ grid); with them, the line spectra follow `f^−β` within 0.04 up to a quarter of Nyquist.
-/// `S` depends only on `|f_i|`, so it is tabulated on one octant. Powers use the `libm` crate
-/// (pure Rust) so the table is the same on every platform; they are taken relative to the
-/// lowest frequency's, which only rescales the field before normalisation and never overflows.
+/// `S` depends only on `|f_i|`, so it is tabulated on one octant.
+///
+/// `S` is a power of the squared frequency, and on a grid that is an integer in disguise:
+/// `f_a = k_a / len_a = k_a (L / len_a) / L` with `L` the least common multiple of the lengths,
+/// so `|f|² L² = Σ (k_a L / len_a)²` is an integer key. Where the keys are few (a cubic grid of
+/// side `N` has `3N² + 1` of them against `(N/2+1)³ · 8` images), each key's power is computed
+/// once and looked up ([`PowerOfKey`]); either way a power is the same function of its key, so
+/// the table is the same bits. Powers use the `libm` crate (pure Rust), so the table is
+/// the same on every platform; they are taken relative to the lowest frequency's, which only
+/// rescales the field before normalisation and never overflows.
 pub(crate) struct AmplitudeTable {
     octant: GridShape,
     values: Vec<f32>,
 }
 
+/// `S` as a function of the integer key `|f|² L²`, relative to the lowest frequency's.
+struct PowerOfKey {
+    exponent: f32,
+    log_key_min: f32,
+    /// Memoised powers by key (NaN: not yet computed), when the keys are few enough.
+    memo: Option<Vec<f32>>,
+}
+
+impl PowerOfKey {
+    fn new(exponent: f32, key_min: u64, key_max: u64, evaluations: usize) -> Self {
+        // A memo entry costs a 4-byte fill, a power an `exp` and a `log`: worth it up to a few
+        // entries per evaluation.
+        let memo = usize::try_from(key_max)
+            .ok()
+            .filter(|&k| evaluations > 0 && k / 4 <= evaluations)
+            .map(|k| vec![f32::NAN; k + 1]);
+        Self {
+            exponent,
+            log_key_min: libm::logf(key_min as f32),
+            memo,
+        }
+    }
+
+    fn direct(&self, key: u64) -> f32 {
+        libm::expf(self.exponent * (libm::logf(key as f32) - self.log_key_min))
+    }
+
+    fn power(&mut self, key: u64) -> f32 {
+        let cached = match &self.memo {
+            Some(memo) => memo[key as usize],
+            None => return self.direct(key),
+        };
+        if !cached.is_nan() {
+            return cached;
+        }
+        let power = self.direct(key);
+        if let Some(memo) = self.memo.as_mut() {
+            memo[key as usize] = power;
+        }
+        power
+    }
+}
+
+/// Least common multiple of the lengths, if it fits.
+fn common_length(dims: &[usize]) -> Option<u64> {
+    fn gcd(a: u64, b: u64) -> u64 {
+        if b == 0 { a } else { gcd(b, a % b) }
+    }
+    dims.iter().try_fold(1u64, |l, &n| {
+        let n = n as u64;
+        (l / gcd(l, n)).checked_mul(n)
+    })
+}
+
 impl AmplitudeTable {
     pub(crate) fn new(dims: &[usize], beta: f32) -> Self {
+        Self::build(dims, beta, true)
+    }
+
+    fn build(dims: &[usize], beta: f32, memoise: bool) -> Self {
         let half: Vec<usize> = dims.iter().map(|&n| n / 2 + 1).collect();
         let octant = GridShape::new(&half);
         let n = dims.len();
         let exponent = -(beta + n as f32 - 1.0) / 2.0;
-        // The lowest non-zero squared frequency, computed exactly as the bins' own below, so
-        // that its power is exp(0) = 1 for any β: an enormous β leaves the lowest frequencies
-        // at 1 and the rest at 0, never a field of zeros (or of overflowed powers).
-        let f2_min = dims
-            .iter()
-            .map(|&len| {
-                let f = 1.0 / len as f32;
-                f * f
-            })
-            .fold(f32::MAX, f32::min);
-        let log_f2_min = libm::logf(f2_min);
-        // Per axis: squared frequency of the bin and of its nearest alias.
-        let near: Vec<Vec<[f32; 2]>> = dims
+        // Keys are at most n · L² with L ≤ the node count (≤ 2^26 for valid grids, so n ≤ 26):
+        // below 2^63. Past that (never for valid grids) they saturate, which only flattens
+        // the top octave.
+        let l = common_length(dims).unwrap_or(u64::MAX);
+        // Per axis: the key term (k · L / len)² of the bin and of its nearest alias.
+        let near: Vec<Vec<[u64; 2]>> = dims
             .iter()
             .zip(&half)
             .map(|(&len, &h)| {
-                (0..h)
-                    .map(|i| {
-                        let f = i as f32 / len as f32;
-                        [f * f, (1.0 - f) * (1.0 - f)]
-                    })
-                    .collect()
+                let unit = l / len as u64;
+                let square = |k: usize| (k as u64).saturating_mul(unit).saturating_pow(2);
+                (0..h).map(|i| [square(i), square(len - i)]).collect()
             })
             .collect();
+        // The lowest non-zero key (one step along the longest axis), whose power is exp(0) = 1
+        // for any β: an enormous β leaves the lowest frequencies at 1 and the rest at 0,
+        // never a field of zeros (or of overflowed powers).
+        let key_min = near.iter().map(|axis| axis[1][0]).min().unwrap_or(1);
+        let key_max = near
+            .iter()
+            .map(|axis| axis[0][1])
+            .fold(0u64, u64::saturating_add);
+        let evaluations = if memoise { octant.len() << n } else { 0 };
+        let mut powers = PowerOfKey::new(exponent, key_min, key_max, evaluations);
+        let mut values = Vec::with_capacity(octant.len());
+        // Odometer over the octant, last axis fastest.
         let mut index = vec![0usize; n];
-        let values = (0..octant.len())
-            .map(|flat| {
-                let mut rest = flat;
-                for (axis, &stride) in octant.strides().iter().enumerate() {
-                    index[axis] = rest / stride;
-                    rest %= stride;
+        for _ in 0..octant.len() {
+            let mut power = 0.0f64;
+            for images in 0..(1usize << n) {
+                let key = index.iter().enumerate().fold(0u64, |key, (a, &i)| {
+                    key.saturating_add(near[a][i][images >> a & 1])
+                });
+                if key > 0 {
+                    power += f64::from(powers.power(key));
                 }
-                let mut power = 0.0f32;
-                for images in 0..(1usize << n) {
-                    let f2: f32 = (0..n).map(|a| near[a][index[a]][images >> a & 1]).sum();
-                    if f2 > 0.0 {
-                        power += libm::expf(exponent * (libm::logf(f2) - log_f2_min));
-                    }
+            }
+            values.push(libm::sqrt(power) as f32);
+            for a in (0..n).rev() {
+                index[a] += 1;
+                if index[a] < half[a] {
+                    break;
                 }
-                libm::sqrtf(power)
-            })
-            .collect();
+                index[a] = 0;
+            }
+        }
         Self { octant, values }
     }
 
@@ -79,5 +148,37 @@ impl AmplitudeTable {
     /// Amplitude at an offset made from [`Self::offsets`].
     pub(crate) fn at(&self, offset: usize) -> f32 {
         self.values[offset]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Memoised or not, the table is the same bits, and it falls as |f|^−(β+n−1)/2 along an
+    /// axis (below a quarter of Nyquist, where the aliases add little).
+    #[test]
+    fn memo_is_invisible_and_the_amplitude_follows_the_power_law() {
+        for (dims, beta) in [
+            (vec![64, 64, 32], 5.0 / 3.0),
+            (vec![256, 256], 1.0),
+            (vec![12, 10, 6], 2.5),
+        ] {
+            let memo = AmplitudeTable::build(&dims, beta, true);
+            let direct = AmplitudeTable::build(&dims, beta, false);
+            let bits =
+                |t: &AmplitudeTable| t.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&memo), bits(&direct), "{dims:?}");
+            let last = dims.len() - 1;
+            let (k1, k2) = (1, dims[last] / 8);
+            if k2 > k1 {
+                let slope = (memo.at(k2) / memo.at(k1)).ln() / (k2 as f32 / k1 as f32).ln();
+                let expected = -(beta + dims.len() as f32 - 1.0) / 2.0;
+                assert!(
+                    (slope - expected).abs() < 0.02,
+                    "{dims:?}: {slope} vs {expected}"
+                );
+            }
+        }
     }
 }

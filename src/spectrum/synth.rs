@@ -191,19 +191,19 @@ impl Synthesizer {
 
     /// One field.
     pub fn field(&self, seed: u64) -> Vec<f32> {
-        let mut spectrum = self.spectrum(seed, false);
+        let (mut spectrum, power) = self.spectrum(seed, false);
         self.fft.process(&mut spectrum, &self.shape);
-        normalized(&spectrum, |c| c.re)
+        normalized(&spectrum, |c| c.re, power[0])
     }
 
     /// Two independent fields from one complex inverse FFT: the real parts of the transform are
     /// the first field, the imaginary parts the second.
     pub fn pair(&self, seed: u64) -> (Vec<f32>, Vec<f32>) {
-        let mut spectrum = self.spectrum(seed, true);
+        let (mut spectrum, power) = self.spectrum(seed, true);
         self.fft.process(&mut spectrum, &self.shape);
         (
-            normalized(&spectrum, |c| c.re),
-            normalized(&spectrum, |c| c.im),
+            normalized(&spectrum, |c| c.re, power[0]),
+            normalized(&spectrum, |c| c.im, power[1]),
         )
     }
 
@@ -214,39 +214,70 @@ impl Synthesizer {
     ///
     /// With `pair`, a second independent Hermitian spectrum `G` is folded in as `F + iG`, whose
     /// inverse transform is `f + i g` with `f`, `g` both real.
-    fn spectrum(&self, seed: u64, pair: bool) -> Vec<Complex<f32>> {
+    ///
+    /// Also returns `Σ_k |F(k)|²` and `Σ_k |G(k)|²` (in f64, in index order): by Parseval,
+    /// the variances of `f` and `g` (the unnormalised inverse transform of `F` has
+    /// `Σ_x f² = N Σ_k |F|²`), so normalising needs no pass over the fields.
+    fn spectrum(&self, seed: u64, pair: bool) -> (Vec<Complex<f32>>, [f64; 2]) {
+        if pair {
+            self.spectrum_of::<true>(seed)
+        } else {
+            self.spectrum_of::<false>(seed)
+        }
+    }
+
+    /// [`Self::spectrum`], with or without `G`. Bins are visited in flat order, each pair of
+    /// mirrors once (at the first of the two): a row whose mirror row comes later is visited
+    /// whole, one that comes earlier is skipped, and a row that is its own mirror (a handful)
+    /// is visited up to its middle.
+    fn spectrum_of<const PAIR: bool>(&self, seed: u64) -> (Vec<Complex<f32>>, [f64; 2]) {
         let dims = self.shape.dims();
         let axes = dims.len();
         let last = dims[axes - 1];
         let zero = Complex::new(0.0f32, 0.0);
-        let i_unit = Complex::new(0.0f32, 1.0);
         let mut normals = NormalPairs::new(seed);
         let mut out = vec![zero; self.shape.len()];
+        let mut power = [0.0f64; 2];
+        let (row_mirrors, row_table) = (
+            &self.mirror_offsets[axes - 1],
+            &self.table_offsets[axes - 1],
+        );
         // Odometer over every axis but the last; the last is the inner loop.
         let mut index = vec![0usize; axes - 1];
-        for chunk_start in (0..out.len()).step_by(last) {
-            let mut mirror_base = 0;
-            let mut table_base = 0;
+        for row in (0..out.len()).step_by(last) {
+            let mut mirror_row = 0;
+            let mut table_row = 0;
             for (axis, &i) in index.iter().enumerate() {
-                mirror_base += self.mirror_offsets[axis][i];
-                table_base += self.table_offsets[axis][i];
+                mirror_row += self.mirror_offsets[axis][i];
+                table_row += self.table_offsets[axis][i];
             }
-            for i in 0..last {
-                let flat = chunk_start + i;
-                let mirror = mirror_base + self.mirror_offsets[axes - 1][i];
+            let columns = match mirror_row.cmp(&row) {
+                std::cmp::Ordering::Greater => last,
+                std::cmp::Ordering::Equal => last / 2 + 1,
+                std::cmp::Ordering::Less => 0, // set with its mirror row
+            };
+            for j in 0..columns {
+                let flat = row + j;
+                let mirror = mirror_row + row_mirrors[j];
                 if mirror < flat || flat == 0 {
                     continue; // DC stays zero; a partner was set with its mirror
                 }
-                let amplitude = self.table.at(table_base + self.table_offsets[axes - 1][i]);
+                let amplitude = self.table.at(table_row + row_table[j]);
                 let a = normals.next_pair();
-                let b = if pair { normals.next_pair() } else { zero };
+                let b = if PAIR { normals.next_pair() } else { zero };
+                let a2 = f64::from(amplitude) * f64::from(amplitude);
                 if mirror == flat {
                     // Real, with the power of a complex bin: √2 · X.
                     let s = std::f32::consts::SQRT_2 * amplitude;
                     out[flat] = Complex::new(a.re * s, b.re * s);
+                    power[0] += 2.0 * a2 * f64::from(a.re * a.re);
+                    power[1] += 2.0 * a2 * f64::from(b.re * b.re);
                 } else {
-                    out[flat] = (a + i_unit * b) * amplitude;
-                    out[mirror] = (a.conj() + i_unit * b.conj()) * amplitude;
+                    // F + iG at k and its conjugate partner at −k.
+                    out[flat] = Complex::new(a.re - b.im, a.im + b.re) * amplitude;
+                    out[mirror] = Complex::new(a.re + b.im, b.re - a.im) * amplitude;
+                    power[0] += 2.0 * a2 * f64::from(a.norm_sqr());
+                    power[1] += 2.0 * a2 * f64::from(b.norm_sqr());
                 }
             }
             for axis in (0..axes - 1).rev() {
@@ -257,29 +288,24 @@ impl Synthesizer {
                 index[axis] = 0;
             }
         }
-        out
+        (out, power)
     }
 }
 
-/// One part of a complex field, shifted to zero mean and scaled to unit variance (sums in f64,
-/// in index order).
-fn normalized(field: &[Complex<f32>], part: impl Fn(&Complex<f32>) -> f32) -> Vec<f32> {
-    let count = field.len() as f64;
-    let mean = field.iter().map(|c| f64::from(part(c))).sum::<f64>() / count;
-    let variance = field
-        .iter()
-        .map(|c| (f64::from(part(c)) - mean).powi(2))
-        .sum::<f64>()
-        / count;
+/// One part of a complex field scaled to unit variance, given its variance from the spectrum
+/// (its mean is zero: the DC bin is). Rounding in the transform leaves the mean and variance
+/// within about 1e-6 of 0 and 1.
+fn normalized(
+    field: &[Complex<f32>],
+    part: impl Fn(&Complex<f32>) -> f32,
+    variance: f64,
+) -> Vec<f32> {
     let scale = if variance > 0.0 {
-        1.0 / variance.sqrt()
+        (1.0 / variance.sqrt()) as f32
     } else {
         0.0
     };
-    field
-        .iter()
-        .map(|c| ((f64::from(part(c)) - mean) * scale) as f32)
-        .collect()
+    field.iter().map(|c| part(c) * scale).collect()
 }
 
 #[cfg(test)]
@@ -295,7 +321,7 @@ mod tests {
         for dims in [&[6usize][..], &[5, 4], &[3, 4, 5], &[2, 3, 2, 4]] {
             let s = synth(dims);
             for pair in [false, true] {
-                let spectrum = s.spectrum(9, pair);
+                let spectrum = s.spectrum(9, pair).0;
                 for flat in 0..spectrum.len() {
                     let (a, m) = (spectrum[flat], spectrum[s.shape.mirror(flat)]);
                     if pair {
@@ -320,7 +346,7 @@ mod tests {
     fn transform_of_the_spectrum_is_real() {
         for dims in [&[64usize][..], &[15, 16], &[8, 9, 10]] {
             let s = synth(dims);
-            let mut field = s.spectrum(1, false);
+            let mut field = s.spectrum(1, false).0;
             s.fft.process(&mut field, &s.shape);
             let max_re = field.iter().map(|c| c.re.abs()).fold(0.0, f32::max);
             let max_im = field.iter().map(|c| c.im.abs()).fold(0.0, f32::max);
@@ -334,7 +360,7 @@ mod tests {
     #[test]
     fn inverse_fft_matches_direct_sum() {
         let s = synth(&[3, 4]);
-        let spectrum = s.spectrum(4, true);
+        let spectrum = s.spectrum(4, true).0;
         for backend in [FftBackend::Portable, FftBackend::Simd] {
             let mut fast = spectrum.clone();
             InverseFftNd::new(&s.shape, backend).process(&mut fast, &s.shape);
