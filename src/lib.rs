@@ -153,9 +153,11 @@
 //! ([`FallingObjectInvalid`](freefall::FallingObjectInvalid),
 //! [`AeroBodyInvalid`](aero::AeroBodyInvalid), [`ClothInvalid`](cloth::ClothInvalid),
 //! [`PhysicalClothInvalid`](aero::PhysicalClothInvalid)), logged once with `warn!`, and holds
-//! still; fixing it clears the component. Runtime knobs clamp instead (a step, a wind speed, the
-//! wind clock, solver iterations), as their docs say. A plugin never panics on bad settings or a
-//! removed resource: it logs and leaves the part out.
+//! still; fixing it clears the component. Bad tiers on a `FallLod` or `ClothLod` get a
+//! [`LodInvalid`](lod::LodInvalid) the same way but only fall back to full detail. Runtime
+//! knobs clamp instead (a step, a wind speed, the wind clock, solver iterations), as their docs
+//! say. A plugin never panics on bad settings or a removed resource: it logs and leaves the
+//! part out.
 //!
 //! # Determinism and multiplayer
 //!

@@ -10,7 +10,10 @@
 //! | a single [`FallingObject`](crate::freefall::FallingObject) | [`FallLod`](crate::freefall::FallLod) | the same | the same |
 //! | a [`Cloth`](crate::cloth::Cloth) | [`ClothLod`](crate::cloth::ClothLod) | every 2nd / 4th yarn and node traced, the rest interpolated | a change of tier cross-fades |
 //!
-//! Without a focus everything is at full detail.
+//! Without a focus everything is at full detail. Tiers that fail their check (a NaN or
+//! negative `near`, a `far` below `near`) on a `FallLod` or `ClothLod` mean full detail, and the
+//! entity gets a [`LodInvalid`] naming the field (logged once with `warn!`) until they are
+//! fixed or removed.
 
 use bevy::ecs::prelude::*;
 use bevy::math::Vec3;
@@ -56,7 +59,7 @@ impl LodTiers {
     /// pass their check (a NaN or negative `near`, a `far` below `near`) give 1 everywhere:
     /// full detail. ([`LeafCloud`](crate::freefall::LeafCloud) refuses them with the field
     /// named; on a [`FallLod`](crate::freefall::FallLod) or [`ClothLod`](crate::cloth::ClothLod)
-    /// they only turn the levels of detail off.)
+    /// they turn the levels of detail off and put a [`LodInvalid`] on the entity.)
     pub fn steps_at(&self, distance: Option<f32>) -> u32 {
         self.steps_at_squared(distance.map(|d| d * d.abs()))
     }
@@ -84,6 +87,98 @@ impl LodTiers {
             return Err(("far", self.far, "must be ≥ near"));
         }
         Ok(())
+    }
+}
+
+/// Why an entity's levels of detail are off: its `FallLod` or `ClothLod` failed the check.
+#[derive(Clone, Debug, PartialEq, thiserror::Error, Reflect)]
+#[reflect(Debug)]
+pub enum LodError {
+    /// A distance outside its valid range.
+    #[error("`{field}` = {value}: {reason}")]
+    Invalid {
+        /// The field's name (`near` or `far`).
+        field: &'static str,
+        /// The rejected value.
+        value: f32,
+        /// What it must be.
+        reason: &'static str,
+    },
+}
+
+impl LodError {
+    /// Name of the offending field.
+    pub fn field(&self) -> &'static str {
+        match self {
+            Self::Invalid { field, .. } => field,
+        }
+    }
+}
+
+/// On an entity whose `FallLod` or `ClothLod` tiers fail their check: the error. The entity is
+/// worked on at full detail meanwhile; the component goes when the tiers are fixed or removed.
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::cloth::ClothLod;
+/// use bevy_windfall::lod::{LodInvalid, LodTiers};
+/// use bevy_windfall::prelude::*;
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, AssetPlugin::default()))
+///     .init_asset::<Mesh>()
+///     .add_plugins(ClothPlugin);
+/// let cloth = app
+///     .world_mut()
+///     .spawn((Cloth::default(), ClothLod(LodTiers { near: 30.0, far: 10.0 })))
+///     .id();
+/// app.update();
+/// let invalid = app.world().get::<LodInvalid>(cloth).unwrap();
+/// assert_eq!(invalid.0.field(), "far");
+/// ```
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Debug)]
+pub struct LodInvalid(pub LodError);
+
+/// A component that carries [`LodTiers`] (`FallLod`, `ClothLod`).
+pub(crate) trait HasLodTiers: Component {
+    fn tiers(&self) -> LodTiers;
+}
+
+/// Puts a [`LodInvalid`] on entities whose tiers of `C` changed and fail their check (warned
+/// once), takes it off when they pass or `C` is removed.
+pub(crate) fn check_tiers<C: HasLodTiers>(
+    mut commands: Commands,
+    changed: Query<(Entity, &C, Option<&LodInvalid>), Changed<C>>,
+    mut removed: RemovedComponents<C>,
+    marked: Query<(), With<LodInvalid>>,
+) {
+    for (entity, component, invalid) in &changed {
+        match component.tiers().check() {
+            Ok(()) => {
+                if invalid.is_some() {
+                    commands.entity(entity).remove::<LodInvalid>();
+                }
+            }
+            Err((field, value, reason)) => {
+                let error = LodError::Invalid {
+                    field,
+                    value,
+                    reason,
+                };
+                if invalid.is_none_or(|i| i.0 != error) {
+                    bevy::log::warn!("levels of detail of {entity}: {error}; full detail instead");
+                    commands.entity(entity).insert(LodInvalid(error));
+                }
+            }
+        }
+    }
+    for entity in removed.read() {
+        if marked.contains(entity)
+            && let Ok(mut e) = commands.get_entity(entity)
+        {
+            e.remove::<LodInvalid>();
+        }
     }
 }
 

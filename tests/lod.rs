@@ -265,3 +265,99 @@ fn hostile_tiers_and_focus_give_finite_poses() {
         assert!(state.sim.positions().iter().all(|p| p.is_finite()));
     }
 }
+
+#[test]
+fn bad_tiers_are_named_and_mean_full_detail_until_fixed() {
+    use bevy_windfall::cloth::{Cloth, ClothLod, ClothPlugin};
+    use bevy_windfall::lod::{LodInvalid, LodTiers};
+    let mut app = common::headless_app_with_meshes();
+    app.add_plugins((FreeFallPlugin, ClothPlugin));
+    // The camera far away: valid tiers would step every object at tier 4.
+    app.world_mut()
+        .spawn((LodFocus, Transform::from_xyz(0.0, 2.0, 500.0)));
+    let cases = [
+        (
+            LodTiers {
+                near: -1.0,
+                far: 60.0,
+            },
+            Some("near"),
+        ),
+        (
+            LodTiers {
+                near: f32::NAN,
+                far: 60.0,
+            },
+            Some("near"),
+        ),
+        (
+            LodTiers {
+                near: 30.0,
+                far: 10.0,
+            },
+            Some("far"),
+        ),
+        (
+            LodTiers {
+                near: 1.0,
+                far: f32::NAN,
+            },
+            Some("far"),
+        ),
+        (
+            LodTiers {
+                near: 10.0,
+                far: f32::INFINITY,
+            },
+            None,
+        ),
+    ];
+    let spawn = |app: &mut App, lod: Option<FallLod>, x: f32| {
+        let mut e = app
+            .world_mut()
+            .spawn((FallingObject::default(), Transform::from_xyz(x, 4.0, 0.0)));
+        if let Some(lod) = lod {
+            e.insert(lod);
+        }
+        e.id()
+    };
+    let leaves: Vec<Entity> = (0..cases.len())
+        .map(|i| spawn(&mut app, Some(FallLod(cases[i].0)), i as f32))
+        .collect();
+    // The twin of the first leaf without levels of detail (the same seed, the same place).
+    let twin = spawn(&mut app, None, 0.0);
+    let cloths: Vec<Entity> = cases
+        .iter()
+        .map(|&(tiers, _)| {
+            app.world_mut()
+                .spawn((Cloth::default(), ClothLod(tiers)))
+                .id()
+        })
+        .collect();
+    ready(&mut app);
+    for _ in 0..30 {
+        app.update();
+    }
+    for (i, &(_, field)) in cases.iter().enumerate() {
+        for e in [leaves[i], cloths[i]] {
+            let named = app.world().get::<LodInvalid>(e).map(|l| l.0.field());
+            assert_eq!(named, field, "case {i}");
+        }
+    }
+    // Full detail: the leaf with bad tiers moves exactly as its twin without any.
+    let pose = |app: &App, e: Entity| *app.world().get::<Transform>(e).unwrap();
+    let (a, b) = (pose(&app, leaves[0]), pose(&app, twin));
+    assert_eq!(a.translation.x.to_bits(), b.translation.x.to_bits());
+    assert_eq!(a.translation.y.to_bits(), b.translation.y.to_bits());
+    assert_eq!(a.rotation, b.rotation);
+    // Fixed, or the component removed: the error goes.
+    app.world_mut().get_mut::<FallLod>(leaves[0]).unwrap().0 = LodTiers::default();
+    app.world_mut().entity_mut(leaves[2]).remove::<FallLod>();
+    app.world_mut().entity_mut(cloths[3]).remove::<ClothLod>();
+    app.update();
+    app.update();
+    for e in [leaves[0], leaves[2], cloths[3]] {
+        assert!(app.world().get::<LodInvalid>(e).is_none());
+    }
+    assert!(app.world().get::<LodInvalid>(leaves[1]).is_some());
+}

@@ -139,6 +139,12 @@ pub struct ClothState {
 #[reflect(Component, Default, Debug)]
 pub struct ClothLod(pub LodTiers);
 
+impl crate::lod::HasLodTiers for ClothLod {
+    fn tiers(&self) -> LodTiers {
+        self.0
+    }
+}
+
 /// Seconds over which a cloth cross-fades from one grid coarseness to another.
 pub const CLOTH_LOD_FADE: f32 = 0.5;
 
@@ -227,7 +233,12 @@ impl Plugin for ClothPlugin {
             .register_type::<LodFocus>()
             .register_type::<LodTiers>()
             .register_type::<ClothInvalid>()
+            .register_type::<crate::lod::LodInvalid>()
             .add_observer(init_on_insert)
+            .add_systems(
+                PostUpdate,
+                crate::lod::check_tiers::<ClothLod>.in_set(WindfallSystems::WriteBack),
+            )
             // Set up in the frame the cloth is added (or changed), before its mesh is written.
             .add_systems(
                 PostUpdate,

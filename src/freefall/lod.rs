@@ -38,6 +38,12 @@ use crate::lod::LodTiers;
 #[reflect(Component, Default, Debug)]
 pub struct FallLod(pub LodTiers);
 
+impl crate::lod::HasLodTiers for FallLod {
+    fn tiers(&self) -> LodTiers {
+        self.0
+    }
+}
+
 /// The clock the tiers of single objects run on: seconds and fixed steps since the plugin
 /// started, and the last step's length.
 #[derive(Resource, Clone, Copy, Debug, Default)]

@@ -316,6 +316,7 @@ impl Plugin for FreeFallPlugin {
             .register_type::<FallingObjectInvalid>()
             .register_type::<FreeFallSettings>()
             .register_type::<FallLod>()
+            .register_type::<crate::lod::LodInvalid>()
             .register_type::<LodFocus>()
             .register_type::<crate::lod::LodTiers>()
             .register_type::<FallModel>()
@@ -329,8 +330,10 @@ impl Plugin for FreeFallPlugin {
             // frame before `pose_objects` would overwrite it.
             .add_systems(
                 PostUpdate,
-                (release_objects, pose_objects)
-                    .chain()
+                (
+                    (release_objects, pose_objects).chain(),
+                    crate::lod::check_tiers::<FallLod>,
+                )
                     .in_set(WindfallSystems::WriteBack),
             );
     }

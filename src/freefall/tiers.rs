@@ -57,6 +57,13 @@ impl TierClock {
         }
     }
 
+    /// True until the first step after a release ([`Self::default`] or
+    /// [`Self::stepped_at`] with a zero span): a fall just let go takes that step at once
+    /// rather than wait for its tier's turn.
+    pub(crate) fn fresh(&self) -> bool {
+        self.span == 0.0 && self.from.is_none()
+    }
+
     /// The share of the last step's span that has passed at `now`, in [0, 1].
     fn share(&self, now: f64) -> f32 {
         if self.span > 0.0 {

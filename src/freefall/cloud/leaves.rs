@@ -345,14 +345,16 @@ fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkRepo
             .steps_at_squared(step.focus.map(|f| f.distance_squared(position)));
         // Due on its phase of the tier's period (1, 2 or 4 steps): the leaves of a tier take
         // their turns on different steps, and a change of tier never waits longer than 4 steps.
-        // (`every` is a power of two: the phase is a mask, not a division.)
-        if (ctx.steps + (first + i) as u64) & u64::from(every - 1) != 0 {
+        // (`every` is a power of two: the phase is a mask, not a division.) A leaf just let go
+        // takes its first step at once and its next on its phase.
+        let phase = ((ctx.steps + (first + i) as u64) & u64::from(every - 1)) as u32;
+        if phase != 0 && !leaf.tier.fresh() {
             report.resting += usize::from(leaf.path.landed());
             continue;
         }
         let wind = step.wind.map_or(Vec3::ZERO, |w| w.velocity(position));
-        // Its tier's next turn is `every` steps on.
-        let next = every as f32 * step.dt;
+        // Its tier's next turn is this many steps on.
+        let next = (every - phase) as f32 * step.dt;
         let (outcome, waited) = leaf.tier.advance(
             &mut leaf.path,
             step.model,
