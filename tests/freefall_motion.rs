@@ -477,3 +477,27 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn drift_in_still_air_comes_to_rest_without_subnormals() {
+    // Blown at 5 m/s, then in still air for 60 s: the drift the wind gave decays away and ends
+    // exactly at rest, never lingering on subnormal values (which make every operation on them
+    // a slow microcode assist, in every later step).
+    let model = FallModel::default();
+    let mut path = FallingObject::default()
+        .path(
+            &model,
+            release_from(Vec3::new(0.0, 1.0e4, 0.0), Quat::IDENTITY),
+        )
+        .unwrap();
+    for _ in 0..120 {
+        path.advance(&model, DT, Vec3::new(5.0, 0.0, 0.0), &tilt());
+    }
+    assert!(path.drift().x > 1.0, "{}", path.drift());
+    for step in 0..3600 {
+        path.advance(&model, DT, Vec3::ZERO, &tilt());
+        let d = path.drift().to_array();
+        assert!(d.iter().all(|c| !c.is_subnormal()), "step {step}: {d:?}");
+    }
+    assert_eq!(path.drift(), Vec3::ZERO);
+}

@@ -1,6 +1,5 @@
 //! One fall through time: the Markov chain picks primitive motions, pieces give the still-fluid
-//! path f(t), the fluid carries it (§4.2) through a response time, Bézier curves smooth what is
-//! shown.
+//! path f(t), the fluid carries it (§4.2) through a response time, Béziers smooth what is shown.
 
 use std::f32::consts::{PI, TAU};
 use std::sync::Arc;
@@ -28,6 +27,8 @@ const MIN_BLEND: f32 = 0.15;
 const RELEASE_SWINGS: f32 = 1.0;
 /// ... and at least this long, s.
 const MIN_RELEASE: f32 = 0.25;
+/// Drift speeds below this, m/s, are still air (flushed to zero in `FallPath::advance`).
+const MIN_DRIFT: f32 = 1e-6;
 
 /// The piece a motion change blends away from: its time and offset run on past its end.
 #[derive(Clone, Copy, Debug)]
@@ -256,10 +257,14 @@ impl FallPath {
         let delta = self.still_step(model, dt, wind);
         self.time += f64::from(dt);
         self.still += delta;
-        // Backward Euler on dv/dt = (u − v) / τ: never past the wind, stable at any step.
+        // Backward Euler on dv/dt = (u − v) / τ: never past the wind, stable at any step. In
+        // still air the decaying drift would stay on subnormals (slow assists): flushed.
         let slip = wind - self.drift;
         let k = dt * self.scales.response_rate(slip.length_squared());
         self.drift += slip * (k / (1.0 + k));
+        if self.drift.length_squared() < MIN_DRIFT * MIN_DRIFT {
+            self.drift = Vec3::ZERO;
+        }
         let mut next = self.points[2] + self.drift * dt + delta;
         let landed = next.y <= self.ground;
         if landed {
@@ -491,8 +496,7 @@ impl FallPath {
         let curve =
             CubicSegment::new_bezier([p1, p1 + start_tangent / 3.0, p2 - end_tangent / 3.0, p2]);
         let [q0, q1] = self.orientations;
-        // Consecutive orientations are a step apart: nlerp (glam's lerp takes the short way
-        // and normalises) is slerp to well under a degree.
+        // A step apart, nlerp (glam's lerp: short way, normalised) is slerp to under a degree.
         (curve.position(s), q0.lerp(q1, s))
     }
 
