@@ -120,7 +120,10 @@ fn assert_aloft(app: &mut App) {
         .iter(app.world())
         .filter_map(|s| s.path().map(|p| p.position().y))
         .fold(f32::INFINITY, f32::min);
-    assert!(lowest > 10.0, "an object fell to {lowest} m: out of the wind");
+    assert!(
+        lowest > 10.0,
+        "an object fell to {lowest} m: out of the wind"
+    );
 }
 
 fn step(c: &mut Criterion) {

@@ -169,6 +169,11 @@ const GOLDEN_3D: u64 = 2228581054304297266;
 #[test]
 fn bad_input_gives_a_named_error() {
     assert_eq!(try_fbm(&[], 1.0, 0), Err(SpectrumError::NoAxis));
+    // Few nodes, but over many axes: 2^26 alias images per bin would hang the table.
+    assert_eq!(
+        try_fbm(&[2; 26], 1.0, 0),
+        Err(SpectrumError::TooManyAxes { axes: 26 })
+    );
     assert_eq!(
         try_fbm(&[4, 1, 4], 1.0, 0),
         Err(SpectrumError::AxisTooShort { axis: 1, len: 1 })

@@ -24,6 +24,11 @@ pub(crate) struct AmplitudeTable {
     values: Vec<f32>,
 }
 
+/// Most entries a [`PowerOfKey`] memo may have (64 MiB). The rule "a few entries per
+/// evaluation" alone lets a big grid's memo reach 16 entries per node: a 8192² grid has keys up
+/// to 2 · 4096² (a 128 MiB memo), and grids near [`super::MAX_NODES`] up to 4 GiB.
+const MAX_MEMO_ENTRIES: usize = 1 << 24;
+
 /// `S` as a function of the integer key `|f|² L²`, relative to the lowest frequency's.
 struct PowerOfKey {
     exponent: f32,
@@ -38,7 +43,7 @@ impl PowerOfKey {
         // entries per evaluation.
         let memo = usize::try_from(key_max)
             .ok()
-            .filter(|&k| evaluations > 0 && k / 4 <= evaluations)
+            .filter(|&k| evaluations > 0 && k / 4 <= evaluations && k < MAX_MEMO_ENTRIES)
             .map(|k| vec![f32::NAN; k + 1]);
         Self {
             exponent,
@@ -88,8 +93,8 @@ impl AmplitudeTable {
         let octant = GridShape::new(&half);
         let n = dims.len();
         let exponent = -(beta + n as f32 - 1.0) / 2.0;
-        // Keys are at most n · L² with L ≤ the node count (≤ 2^26 for valid grids, so n ≤ 26):
-        // below 2^63. Past that (never for valid grids) they saturate, which only flattens
+        // Keys are at most n · L² with L ≤ the node count (≤ 2^26 for valid grids, n ≤ 4):
+        // below 2^55. Past that (never for valid grids) they saturate, which only flattens
         // the top octave.
         let l = common_length(dims).unwrap_or(u64::MAX);
         // Per axis: the key term (k · L / len)² of the bin and of its nearest alias.
@@ -110,7 +115,11 @@ impl AmplitudeTable {
             .iter()
             .map(|axis| axis[0][1])
             .fold(0u64, u64::saturating_add);
-        let evaluations = if memoise { octant.len() << n } else { 0 };
+        let evaluations = if memoise {
+            octant.len().saturating_mul(1 << n)
+        } else {
+            0
+        };
         let mut powers = PowerOfKey::new(exponent, key_min, key_max, evaluations);
         let mut values = Vec::with_capacity(octant.len());
         // Odometer over the octant, last axis fastest.
@@ -179,6 +188,20 @@ mod tests {
                     "{dims:?}: {slope} vs {expected}"
                 );
             }
+        }
+    }
+
+    /// The memo is bounded whatever the grid: past the bound the powers are computed directly,
+    /// to the same bits.
+    #[test]
+    fn memo_memory_is_bounded() {
+        // An 8192² grid: keys up to 2 · 4096², evaluations 4 per octant bin.
+        let big = PowerOfKey::new(-1.0, 1, 2 * 4096 * 4096, 4 * 4097 * 4097);
+        assert!(big.memo.is_none());
+        let mut cubic = PowerOfKey::new(-1.0, 1, 3 * 64 * 64, 1 << 20);
+        assert_eq!(cubic.memo.as_ref().map(Vec::len), Some(3 * 64 * 64 + 1));
+        for key in [1, 7, 3 * 64 * 64] {
+            assert_eq!(cubic.power(key).to_bits(), big.direct(key).to_bits());
         }
     }
 }

@@ -9,7 +9,7 @@
 //!
 //! | quantity | meaning |
 //! |---|---|
-//! | `dims` | grid nodes per axis, row-major (last index fastest), each ≥ 2, at most [`MAX_NODES`] in all |
+//! | `dims` | grid nodes per axis, row-major (last index fastest), each ≥ 2, at most [`MAX_AXES`] axes and [`MAX_NODES`] nodes in all |
 //! | `beta` | spectral exponent β ≥ 0: 0 white, 1 pink, 5/3 Kolmogorov, 2 Brownian |
 //! | `seed` | 64-bit seed of a PCG stream: same seed, same field, bit for bit |
 //!
@@ -35,6 +35,6 @@ pub use grid::GridShape;
 pub(crate) use sample::periodic_lerp;
 pub use sample::periodic_lerp_2d;
 pub use synth::{
-    CACHED_SYNTHESIZERS, MAX_CACHED_NODES, MAX_NODES, SpectrumError, Synthesizer, fbm, fbm_pair,
-    try_fbm, try_fbm_pair,
+    CACHED_SYNTHESIZERS, MAX_AXES, MAX_CACHED_NODES, MAX_NODES, SpectrumError, Synthesizer, fbm,
+    fbm_pair, try_fbm, try_fbm_pair,
 };

@@ -16,6 +16,12 @@ pub enum SpectrumError {
     /// No axis was given.
     #[error("`dims` is empty: a field needs at least one axis")]
     NoAxis,
+    /// More axes than [`MAX_AXES`].
+    #[error("`dims` has {axes} axes, more than the limit of {MAX_AXES}")]
+    TooManyAxes {
+        /// How many were given.
+        axes: usize,
+    },
     /// An axis has fewer than two nodes.
     #[error("`dims[{axis}]` = {len}: every axis needs at least 2 nodes")]
     AxisTooShort {
@@ -44,6 +50,12 @@ impl SpectrumError {
         }
     }
 }
+
+/// Most axes a field may have: 4 (space and time). The amplitude table sums the power of
+/// `2^n` alias images per bin, so without a bound a valid node count spread over many short
+/// axes (`[2; 26]`) would take 2^52 steps to tabulate; with it, the table costs at most 16 steps
+/// per node.
+pub const MAX_AXES: usize = 4;
 
 /// Largest field (product of `dims`) any synthesis may make: 2^26 nodes. It is checked before
 /// anything is allocated; at the limit a field takes 512 MiB of spectrum while it is made and
@@ -89,6 +101,9 @@ pub fn try_fbm_pair(
 fn validate(dims: &[usize], beta: f32) -> Result<(), SpectrumError> {
     if dims.is_empty() {
         return Err(SpectrumError::NoAxis);
+    }
+    if dims.len() > MAX_AXES {
+        return Err(SpectrumError::TooManyAxes { axes: dims.len() });
     }
     if let Some((axis, &len)) = dims.iter().enumerate().find(|&(_, &n)| n < 2) {
         return Err(SpectrumError::AxisTooShort { axis, len });

@@ -111,7 +111,9 @@ impl WindField {
                 value: beta,
                 reason: "must be finite and ≥ 0",
             },
-            SpectrumError::NoAxis | SpectrumError::AxisTooShort { .. } => WindError::GridAxis {
+            SpectrumError::NoAxis
+            | SpectrumError::TooManyAxes { .. }
+            | SpectrumError::AxisTooShort { .. } => WindError::GridAxis {
                 field: "grid",
                 len: 0,
             },
