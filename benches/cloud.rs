@@ -11,6 +11,7 @@ use bevy::math::Vec3;
 use bevy::tasks::{ParallelSliceMut, TaskPool, TaskPoolBuilder};
 use bevy_windfall::freefall::cloud::{CLOUD_CHUNK, CloudLeaves, CloudStep};
 use bevy_windfall::freefall::{CloudLod, CloudRegion, FallModel, LeafCloud, WindTilt};
+use bevy_windfall::lod::{Focus, LodView};
 use bevy_windfall::wind::{WindConfig, WindField};
 use criterion::{BatchSize, Criterion, criterion_main};
 
@@ -30,20 +31,24 @@ fn storm(lod: CloudLod) -> LeafCloud {
     }
 }
 
-/// The cloud after two seconds of falling (motions under way, blends and pieces mixed).
-fn warmed(model: &FallModel, wind: &WindField, lod: CloudLod, pool: &TaskPool) -> CloudLeaves {
+/// The cloud after two seconds of falling (motions under way, blends and pieces mixed), its
+/// levels of detail measured from `focus`.
+fn warmed(
+    model: &FallModel,
+    wind: &WindField,
+    lod: CloudLod,
+    focus: Option<Focus>,
+    pool: &TaskPool,
+) -> CloudLeaves {
     // Far below: every leaf is in the air for the whole run (the costly case).
     let mut leaves = storm(lod).leaves(model, -1.0e5).unwrap();
     for _ in 0..120 {
-        leaves.step(
-            &step(model, wind, Some(Vec3::new(0.0, 2.0, -100.0))),
-            Some(pool),
-        );
+        leaves.step(&step(model, wind, focus), Some(pool));
     }
     leaves
 }
 
-fn step<'a>(model: &'a FallModel, wind: &'a WindField, focus: Option<Vec3>) -> CloudStep<'a> {
+fn step<'a>(model: &'a FallModel, wind: &'a WindField, focus: Option<Focus>) -> CloudStep<'a> {
     CloudStep {
         model,
         wind: Some(wind),
@@ -72,7 +77,7 @@ fn cloud(c: &mut Criterion) {
     let pool = TaskPoolBuilder::new().num_threads(2).build();
     let model = FallModel::default();
     let wind = WindField::new(WindConfig::default()).unwrap();
-    let full = warmed(&model, &wind, CloudLod::FULL, &pool);
+    let full = warmed(&model, &wind, CloudLod::FULL, None, &pool);
     println!(
         "cloud: {} bytes a leaf ({} of them a FallPath)",
         full.memory_bytes() / full.len(),
@@ -99,15 +104,31 @@ fn cloud(c: &mut Criterion) {
         )
     });
     // The camera at one edge of the 200 m square: near leaves every step, the rest less often.
-    let focus = Some(Vec3::new(0.0, 2.0, -100.0));
-    let tiered = warmed(&model, &wind, CloudLod::default(), &pool);
-    group.bench_function("leaf_cloud_with_wind_lod", |b| {
-        b.iter_batched_ref(
-            || tiered.clone(),
-            |leaves| leaves.step(&step(&model, &wind, focus), Some(&pool)),
-            BatchSize::LargeInput,
-        )
-    });
+    // Then in the middle of the storm, without and with Bevy's default view looking along +z:
+    // what it does not see beyond `near` every fourth step.
+    let (edge, centre) = (Vec3::new(0.0, 2.0, -100.0), Vec3::new(0.0, 2.0, 0.0));
+    for (name, focus) in [
+        ("leaf_cloud_with_wind_lod", Focus::from(edge)),
+        ("leaf_cloud_with_wind_lod_centre", Focus::from(centre)),
+        (
+            "leaf_cloud_with_wind_lod_centre_view",
+            Focus::looking(centre, Vec3::Z, LodView::default()),
+        ),
+    ] {
+        let tiered = warmed(&model, &wind, CloudLod::default(), Some(focus), &pool);
+        let advanced = tiered
+            .clone()
+            .step(&step(&model, &wind, Some(focus)), Some(&pool))
+            .advanced;
+        println!("{name}: {advanced} leaves stepped");
+        group.bench_function(name, |b| {
+            b.iter_batched_ref(
+                || tiered.clone(),
+                |leaves| leaves.step(&step(&model, &wind, Some(focus)), Some(&pool)),
+                BatchSize::LargeInput,
+            )
+        });
+    }
     let mut poses = Vec::new();
     group.bench_function("poses_for_drawing", |b| {
         b.iter(|| full.poses(0.5, Some(&pool), &mut poses))

@@ -227,7 +227,7 @@ pub mod prelude {
         FallState, FallingObject, Fluid, FreeFallPlugin, FreeFallSettings, Landed, PrimitiveMotion,
         Shape,
     };
-    pub use crate::lod::LodFocus;
+    pub use crate::lod::{LodFocus, LodView};
     pub use crate::spectrum::fbm;
     pub use crate::wind::{
         SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin, WindSettings,

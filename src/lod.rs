@@ -10,6 +10,12 @@
 //! | a single [`FallingObject`](crate::freefall::FallingObject) | [`FallLod`](crate::freefall::FallLod) | the same | the same |
 //! | a [`Cloth`](crate::cloth::Cloth) | [`ClothLod`](crate::cloth::ClothLod) | every 2nd / 4th yarn and node traced, the rest interpolated | a change of tier cross-fades |
 //!
+//! **Off screen.** With a [`LodView`] beside the focus, what lies outside the cone it sees and
+//! beyond `near` takes the coarsest tier the tiers allow (4, or 2 if `far` is infinite), at any
+//! distance: a storm behind the camera costs what a distant one does. Within `near` nothing is
+//! coarsened (its shadow may be on screen). [`LodView::from_fov`] makes the cone of a
+//! perspective camera.
+//!
 //! Without a focus everything is at full detail. Tiers that fail their check (a NaN or
 //! negative `near`, a `far` below `near`) on a `FallLod` or `ClothLod` mean full detail, and the
 //! entity gets a [`LodInvalid`] naming the field (logged once with `warn!`) until they are
@@ -182,13 +188,141 @@ pub(crate) fn check_tiers<C: HasLodTiers>(
     }
 }
 
-/// The focus: the [`LodFocus`] with the lowest entity, where it is (`None` if there is none or
-/// its position is not finite).
-pub(crate) fn focus(foci: &Query<(Entity, &GlobalTransform), With<LodFocus>>) -> Option<Vec3> {
-    foci.iter()
-        .min_by_key(|(entity, _)| *entity)
-        .map(|(_, t)| t.translation())
-        .filter(|p| p.is_finite())
+/// What the [`LodFocus`] sees, beside it on the same entity: a cone of half angle `half_angle`
+/// about its forward direction (−Z of its `GlobalTransform`, where a Bevy camera looks). What is
+/// outside the cone and beyond the tiers' `near` is worked on at the coarsest tier. Without it,
+/// everything counts as on screen.
+///
+/// A NaN or negative `half_angle` counts as no view (everything on screen, warned by no one:
+/// the safe side); one of π or more sees everything.
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::lod::{LodFocus, LodView};
+///
+/// fn setup(mut commands: Commands) {
+///     // Bevy's default perspective: 45° vertical field of view; a 16:9 window.
+///     let view = LodView::from_fov(std::f32::consts::FRAC_PI_4, 16.0 / 9.0);
+///     // On the camera (here an entity with only a transform, looking along −z).
+///     commands.spawn((LodFocus, view, Transform::from_xyz(0.0, 2.0, 10.0)));
+/// }
+/// # let _ = setup;
+/// ```
+#[derive(Component, Clone, Copy, Debug, PartialEq, Reflect)]
+#[reflect(Component, Default, Debug)]
+pub struct LodView {
+    /// Half the cone's opening angle, rad.
+    pub half_angle: f32,
+}
+
+impl Default for LodView {
+    /// The cone of Bevy's default perspective (45° vertical) on a 16:9 window:
+    /// [`LodView::from_fov`]`(π/4, 16/9)`.
+    fn default() -> Self {
+        Self::from_fov(std::f32::consts::FRAC_PI_4, 16.0 / 9.0)
+    }
+}
+
+impl LodView {
+    /// Extra angle around a screen's corner, rad (10°): a leaf's centre just off screen can
+    /// still show its edge, and the view turns between steps.
+    pub const MARGIN: f32 = 0.175;
+
+    /// The cone around a perspective camera's view: through the corners of a screen of vertical
+    /// field of view `fov_y` (rad, as `PerspectiveProjection::fov`) and `aspect_ratio` (width
+    /// over height), widened by [`Self::MARGIN`].
+    pub fn from_fov(fov_y: f32, aspect_ratio: f32) -> Self {
+        let tan_y = (0.5 * fov_y).tan();
+        let half_diagonal = (tan_y * (1.0 + aspect_ratio * aspect_ratio).sqrt()).atan();
+        Self {
+            half_angle: half_diagonal + Self::MARGIN,
+        }
+    }
+}
+
+/// Where levels of detail are measured from: the focus's position and, if it has a
+/// [`LodView`], the cone it sees. The systems find it from [`LodFocus`]; code that steps a cloud
+/// by hand ([`CloudStep`](crate::freefall::cloud::CloudStep)) makes it, from a position alone
+/// with `Focus::from`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Focus {
+    /// The focus, world space, m.
+    pub position: Vec3,
+    /// The unit direction it looks along and the cosine of its [`LodView::half_angle`] (`None`:
+    /// everything on screen).
+    pub view: Option<(Vec3, f32)>,
+}
+
+impl From<Vec3> for Focus {
+    fn from(position: Vec3) -> Self {
+        Self {
+            position,
+            view: None,
+        }
+    }
+}
+
+impl Focus {
+    /// A focus at `position` looking along `forward` with `view`. A `forward` that cannot be
+    /// normalised, or a view whose angle is NaN or negative, gives no view.
+    pub fn looking(position: Vec3, forward: Vec3, view: LodView) -> Self {
+        let cone = forward
+            .try_normalize()
+            .filter(|_| view.half_angle >= 0.0)
+            .map(|f| (f, view.half_angle.min(std::f32::consts::PI).cos()));
+        Self {
+            position,
+            view: cone,
+        }
+    }
+
+    /// The tier (1, 2 or 4) of `tiers` for something at `at`: by its distance, or the coarsest
+    /// the tiers allow when it is off screen and beyond `near`.
+    pub fn tier(&self, tiers: &LodTiers, at: Vec3) -> u32 {
+        let offset = at - self.position;
+        let squared = offset.length_squared();
+        let by_distance = tiers.steps_at_squared(Some(squared));
+        if by_distance > 1 && !self.sees(offset, squared) {
+            tiers.steps_at_squared(Some(f32::INFINITY))
+        } else {
+            by_distance
+        }
+    }
+
+    /// Whether `offset` (from the focus, |offset|² = `squared`) lies in the view's cone: the
+    /// angle to the forward direction at most the half angle, cos θ = f·o / |o| ≥ c, compared
+    /// squared (no square root per object).
+    fn sees(&self, offset: Vec3, squared: f32) -> bool {
+        let Some((forward, cos_half)) = self.view else {
+            return true;
+        };
+        let along = forward.dot(offset);
+        let bound = cos_half * cos_half * squared;
+        match (along >= 0.0, cos_half >= 0.0) {
+            (true, true) => along * along >= bound,
+            (true, false) => true,
+            (false, true) => false,
+            (false, false) => along * along <= bound,
+        }
+    }
+}
+
+/// The [`LodFocus`] entities, with their views.
+pub(crate) type Foci<'w, 's> =
+    Query<'w, 's, (Entity, &'static GlobalTransform, Option<&'static LodView>), With<LodFocus>>;
+
+/// The focus: the [`LodFocus`] with the lowest entity, where it is and what it sees (`None` if
+/// there is none or its position is not finite; no view if its direction is not).
+pub(crate) fn focus(foci: &Foci) -> Option<Focus> {
+    let (_, transform, view) = foci.iter().min_by_key(|(entity, ..)| *entity)?;
+    let position = transform.translation();
+    if !position.is_finite() {
+        return None;
+    }
+    Some(match view {
+        Some(&view) => Focus::looking(position, transform.forward().as_vec3(), view),
+        None => Focus::from(position),
+    })
 }
 
 #[cfg(test)]
@@ -230,5 +364,51 @@ mod tests {
             .0,
             "far"
         );
+    }
+
+    /// The cone: in front within the half angle, behind, to the side; what is within `near`
+    /// keeps its tier; tiers that allow only 1 or 2 give those; a NaN view sees everything.
+    #[test]
+    fn off_screen_takes_the_coarsest_tier_beyond_near() {
+        let tiers = LodTiers::default(); // 25 m, 60 m
+        let view = LodView { half_angle: 0.5 };
+        let focus = Focus::looking(Vec3::ZERO, Vec3::NEG_Z, view);
+        let at = |angle: f32, d: f32| Vec3::new(angle.sin(), 0.0, -angle.cos()) * d;
+        assert_eq!(focus.tier(&tiers, at(0.0, 30.0)), 2);
+        assert_eq!(focus.tier(&tiers, at(0.49, 30.0)), 2);
+        assert_eq!(focus.tier(&tiers, at(0.51, 30.0)), 4);
+        assert_eq!(focus.tier(&tiers, at(3.0, 30.0)), 4);
+        assert_eq!(focus.tier(&tiers, at(3.0, 10.0)), 1);
+        assert_eq!(focus.tier(&tiers, at(0.0, 70.0)), 4);
+        let no_far = LodTiers {
+            near: 25.0,
+            far: f32::INFINITY,
+        };
+        assert_eq!(focus.tier(&no_far, at(3.0, 30.0)), 2);
+        assert_eq!(focus.tier(&LodTiers::FULL, at(3.0, 1e6)), 1);
+        // A cone wider than a half-space: only a narrow cone behind is off screen.
+        let wide = Focus::looking(Vec3::ZERO, Vec3::NEG_Z, LodView { half_angle: 2.5 });
+        assert_eq!(wide.tier(&tiers, at(2.4, 30.0)), 2);
+        assert_eq!(wide.tier(&tiers, at(2.6, 30.0)), 4);
+        for bad in [f32::NAN, -1.0] {
+            let blind = Focus::looking(Vec3::ZERO, Vec3::NEG_Z, LodView { half_angle: bad });
+            assert_eq!(blind.tier(&tiers, at(3.0, 30.0)), 2);
+        }
+        let nowhere = Focus::looking(Vec3::ZERO, Vec3::NAN, view);
+        assert_eq!(nowhere.tier(&tiers, at(3.0, 30.0)), 2);
+    }
+
+    /// Bevy's default camera on a 16:9 window: the screen's corners are seen, a point half as
+    /// far again off the axis is not.
+    #[test]
+    fn the_default_view_covers_the_corners_of_the_screen() {
+        let focus = Focus::looking(Vec3::ZERO, Vec3::NEG_Z, LodView::default());
+        let tan_y = (std::f32::consts::PI / 8.0).tan();
+        let corner = Vec3::new(tan_y * 16.0 / 9.0, tan_y, -1.0);
+        let tiers = LodTiers::default();
+        assert_eq!(focus.tier(&tiers, corner * 30.0), 2);
+        assert_eq!(focus.tier(&tiers, -corner * 30.0), 4);
+        let beyond = Vec3::new(corner.x * 1.5, corner.y * 1.5, -1.0);
+        assert_eq!(focus.tier(&tiers, beyond * 30.0), 4);
     }
 }

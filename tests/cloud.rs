@@ -8,6 +8,7 @@ use bevy::prelude::*;
 use bevy::tasks::{TaskPool, TaskPoolBuilder};
 use bevy_windfall::freefall::cloud::{CloudLeaves, CloudStep, LeafPose};
 use bevy_windfall::freefall::*;
+use bevy_windfall::lod::Focus;
 use bevy_windfall::wind::{WindConfig, WindField, WindPlugin, WindSource};
 use common::{STEP, headless_app, ready};
 
@@ -55,7 +56,7 @@ fn step_in<'a>(
         wind,
         dt,
         tilt: tilt(),
-        focus,
+        focus: focus.map(Focus::from),
     }
 }
 
@@ -300,6 +301,43 @@ fn cloud_app(description: LeafCloud, wind: Option<WindConfig>) -> (App, Entity) 
     let entity = app.world_mut().spawn(description).id();
     ready(&mut app);
     (app, entity)
+}
+
+/// A camera with a `LodView` that turns away from the cloud: its leaves (all beyond `near`,
+/// none beyond `far`) go from every second step to every fourth, and back when it turns again.
+#[test]
+fn a_cloud_behind_the_camera_is_stepped_a_quarter_as_often() {
+    let description = cloud(
+        400,
+        CloudLod {
+            near: 10.0,
+            far: 1.0e3,
+        },
+    );
+    let (mut app, entity) = cloud_app(description, None);
+    let eye = Vec3::new(0.0, 4.0, 60.0);
+    let camera = app.world_mut().spawn(LodFocus).id();
+    let mut advanced = |target: Vec3| {
+        let look = Transform::from_translation(eye).looking_at(target, Vec3::Y);
+        app.world_mut()
+            .entity_mut(camera)
+            .insert((look, LodView::default()));
+        // One frame for the camera's transform to reach its `GlobalTransform`.
+        app.update();
+        (0..8)
+            .map(|_| {
+                app.update();
+                let state = app.world().get::<LeafCloudState>(entity).unwrap();
+                state.last_step().advanced
+            })
+            .sum::<usize>()
+    };
+    let toward = advanced(Vec3::new(0.0, 4.0, 0.0));
+    let away = advanced(Vec3::new(0.0, 4.0, 120.0));
+    let again = advanced(Vec3::ZERO);
+    assert_eq!(toward, 8 * 400 / 2);
+    assert_eq!(away, 8 * 400 / 4);
+    assert_eq!(again, toward);
 }
 
 #[test]

@@ -146,6 +146,39 @@ fn distant_objects_step_a_quarter_as_often_and_land_where_they_would() {
     );
 }
 
+/// With a `LodView` on the camera, objects beyond `near` that it does not see are stepped a
+/// quarter as often, at any distance; those it sees by their distance (here the half rate).
+#[test]
+fn objects_behind_the_camera_step_a_quarter_as_often() {
+    // 40 m from the row of leaves: between `near` (25 m) and `far` (60 m).
+    let eye = Vec3::new(3.5, 3.0, 40.0);
+    let share_stepped = |target: Vec3| {
+        let (mut app, leaves, camera) = leaves_app(true, eye, None);
+        app.world_mut().entity_mut(camera).insert((
+            LodView::default(),
+            Transform::from_translation(eye).looking_at(target, Vec3::Y),
+        ));
+        app.update();
+        let (mut stepped, mut falling) = (0, 0);
+        for _ in 0..60 {
+            let before: Vec<f32> = leaves.iter().map(|&e| path_of(&app, e).time()).collect();
+            app.update();
+            for (i, &e) in leaves.iter().enumerate() {
+                let path = path_of(&app, e);
+                stepped += usize::from(path.time() != before[i]);
+                falling += usize::from(!path.landed());
+            }
+        }
+        stepped as f32 / falling as f32
+    };
+    let seen = share_stepped(Vec3::new(3.5, 3.0, 0.0));
+    let behind = share_stepped(Vec3::new(3.5, 3.0, 80.0));
+    let aside = share_stepped(Vec3::new(-40.0, 3.0, 40.0));
+    assert!((0.48..=0.52).contains(&seen), "seen: {seen}");
+    assert!((0.24..=0.26).contains(&behind), "behind: {behind}");
+    assert!((0.24..=0.26).contains(&aside), "aside: {aside}");
+}
+
 #[test]
 fn coming_near_or_losing_the_component_never_jumps() {
     let wind = WindConfig {

@@ -146,7 +146,7 @@ fn main() {
     store.config_mut::<ClothGizmos>().0.enabled = paths;
     // The focus of the leaf clouds' levels of detail.
     app.world_mut()
-        .spawn((Camera3d::default(), bevy_windfall::lod::LodFocus));
+        .spawn((Camera3d::default(), LodFocus, LodView::default()));
     app.world_mut().spawn((Hud, common::info_text()));
     app.run();
 }

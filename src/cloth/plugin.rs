@@ -231,6 +231,7 @@ impl Plugin for ClothPlugin {
             .register_type::<ClothState>()
             .register_type::<ClothLod>()
             .register_type::<LodFocus>()
+            .register_type::<crate::lod::LodView>()
             .register_type::<LodTiers>()
             .register_type::<ClothInvalid>()
             .register_type::<crate::lod::LodInvalid>()
@@ -425,7 +426,7 @@ fn write_cloth_meshes(
         &GlobalTransform,
         Option<&ClothLod>,
     )>,
-    foci: Query<(Entity, &GlobalTransform), With<LodFocus>>,
+    foci: crate::lod::Foci,
     mut meshes: Option<ResMut<Assets<Mesh>>>,
     schedule: Option<Res<crate::WindfallSchedule>>,
     time: Option<Res<Time<Fixed>>>,
@@ -441,9 +442,9 @@ fn write_cloth_meshes(
     let focus = crate::lod::focus(&foci);
     for (cloth, mut state, mesh, transform, lod) in &mut cloths {
         let state = &mut *state;
-        let target = lod.map_or(1, |l| {
-            l.0.steps_at_squared(focus.map(|f| f.distance_squared(transform.translation())))
-        }) as usize;
+        let target =
+            lod.zip(focus)
+                .map_or(1, |(l, f)| f.tier(&l.0, transform.translation())) as usize;
         state.detail.update(target, dt);
         let Detail { stride, from, fade } = state.detail;
         if fade < 1.0 {

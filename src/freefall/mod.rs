@@ -46,6 +46,7 @@ mod tilt;
 
 pub use cloud::{
     CloudLod, CloudRegion, LeafCloud, LeafCloudInvalid, LeafCloudPlugin, LeafCloudState, LodFocus,
+    LodView,
 };
 pub use database::{
     CANDIDATES, DatabaseConfig, FEATURES, Feature, MAX_DATABASE_PARAMETER, SEGMENT_SAMPLES,

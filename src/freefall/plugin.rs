@@ -9,7 +9,7 @@ use bevy::math::{Quat, Vec3};
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::time::{Fixed, Time};
-use bevy::transform::components::{GlobalTransform, Transform};
+use bevy::transform::components::Transform;
 
 use super::lod::{FallClock, FallLod};
 use super::markov::MarkovChain;
@@ -318,6 +318,7 @@ impl Plugin for FreeFallPlugin {
             .register_type::<FallLod>()
             .register_type::<crate::lod::LodInvalid>()
             .register_type::<LodFocus>()
+            .register_type::<crate::lod::LodView>()
             .register_type::<crate::lod::LodTiers>()
             .register_type::<FallModel>()
             .register_type::<super::FallPreset>()
@@ -450,7 +451,7 @@ fn release(
 #[allow(clippy::too_many_arguments)]
 fn step_objects(
     mut objects: Query<(Entity, &FallingObject, &mut FallState, Option<&FallLod>)>,
-    foci: Query<(Entity, &GlobalTransform), With<LodFocus>>,
+    foci: crate::lod::Foci,
     wind: Option<Res<WindField>>,
     model: Option<Res<FallModel>>,
     time: Res<Time>,
@@ -486,9 +487,9 @@ fn step_objects(
             if first {
                 state.tier = Some(TierClock::stepped_at(clock.seconds - f64::from(dt), dt));
             }
-            let tier = lod.map_or(1, |l| {
-                l.0.steps_at_squared(focus.map(|f| f.distance_squared(path.position())))
-            });
+            let tier = lod
+                .zip(focus)
+                .map_or(1, |(l, f)| f.tier(&l.0, path.position()));
             if !first && !clock.due(tier, entity.index_u32()) {
                 return;
             }

@@ -14,6 +14,7 @@ use crate::freefall::path::{FallPath, StepOutcome, WindTilt};
 use crate::freefall::random::FallRng;
 use crate::freefall::release::FallRelease;
 use crate::freefall::tiers::TierClock;
+use crate::lod::Focus;
 use crate::wind::WindField;
 
 /// Leaves a parallel task steps together: big enough that the task costs little beside its
@@ -64,9 +65,9 @@ pub struct CloudStep<'a> {
     pub dt: f32,
     /// The wind's turn of eq. 15.
     pub tilt: WindTilt,
-    /// Where the levels of detail are measured from (the camera); `None`: every leaf at full
-    /// detail.
-    pub focus: Option<Vec3>,
+    /// Where the levels of detail are measured from (the camera, and what it sees);
+    /// `None`: every leaf at full detail.
+    pub focus: Option<Focus>,
 }
 
 /// A shown pose: position and orientation, in world space.
@@ -340,9 +341,7 @@ fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkRepo
     let step = ctx.step;
     for (i, leaf) in chunk.iter_mut().enumerate() {
         let position = leaf.path.position();
-        let every = ctx
-            .lod
-            .steps_at_squared(step.focus.map(|f| f.distance_squared(position)));
+        let every = step.focus.map_or(1, |f| f.tier(&ctx.lod, position));
         // Due on its phase of the tier's period (1, 2 or 4 steps): the leaves of a tier take
         // their turns on different steps, and a change of tier never waits longer than 4 steps.
         // (`every` is a power of two: the phase is a mask, not a division.) A leaf just let go

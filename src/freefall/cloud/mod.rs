@@ -19,6 +19,9 @@
 //! | half | near ≤ d < [`CloudLod::far`] | 2nd fixed step | the same, over two steps |
 //! | quarter | d ≥ far | 4th fixed step | the same, over four steps |
 //!
+//! With a [`LodView`] beside the focus, a leaf off screen and beyond `near` is at the quarter
+//! tier wherever it is.
+//!
 //! A leaf stepped less often is advanced over the whole time since its last step, so it follows
 //! the same path (the pieces are sampled by time) and lands at the same time; it reads the wind
 //! less often. The leaves of a tier take turns (leaf i on steps where (step + i) is a multiple of
@@ -34,7 +37,7 @@
 mod leaves;
 mod plugin;
 
-pub use crate::lod::LodFocus;
+pub use crate::lod::{LodFocus, LodView};
 pub use leaves::{CLOUD_CHUNK, CloudLeaves, CloudStep, CloudStepReport, LeafPose};
 pub use plugin::{LeafCloudInvalid, LeafCloudPlugin, LeafCloudState};
 

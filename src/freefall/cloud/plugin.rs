@@ -6,7 +6,6 @@ use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::tasks::ComputeTaskPool;
 use bevy::time::{Fixed, Time};
-use bevy::transform::components::GlobalTransform;
 
 use super::leaves::{CloudLeaves, CloudStep, CloudStepReport, LeafPose};
 use super::{CloudRegion, LeafCloud};
@@ -71,6 +70,7 @@ impl Plugin for LeafCloudPlugin {
             .register_type::<LeafCloudState>()
             .register_type::<LeafCloudInvalid>()
             .register_type::<LodFocus>()
+            .register_type::<crate::lod::LodView>()
             .register_type::<CloudRegion>()
             .register_type::<LodTiers>()
             .init_resource::<FreeFallSettings>()
@@ -157,7 +157,7 @@ fn release(
 
 fn step_clouds(
     mut clouds: Query<(&LeafCloud, &mut LeafCloudState)>,
-    foci: Query<(Entity, &GlobalTransform), With<LodFocus>>,
+    foci: crate::lod::Foci,
     wind: Option<Res<WindField>>,
     model: Option<Res<FallModel>>,
     time: Res<Time>,
