@@ -21,6 +21,8 @@
 //! entity gets a [`LodInvalid`] naming the field (logged once with `warn!`) until they are
 //! fixed or removed.
 
+use std::f32::consts::PI;
+
 use bevy::ecs::prelude::*;
 use bevy::math::Vec3;
 use bevy::reflect::Reflect;
@@ -230,8 +232,14 @@ impl LodView {
 
     /// The cone around a perspective camera's view: through the corners of a screen of vertical
     /// field of view `fov_y` (rad, as `PerspectiveProjection::fov`) and `aspect_ratio` (width
-    /// over height), widened by [`Self::MARGIN`].
+    /// over height), widened by [`Self::MARGIN`]. A field of view that is not in (0, π) or an
+    /// aspect ratio that is not finite and > 0 gives a view that sees everything (no object is
+    /// coarsened for being off screen).
     pub fn from_fov(fov_y: f32, aspect_ratio: f32) -> Self {
+        let valid = fov_y > 0.0 && fov_y < PI && aspect_ratio > 0.0 && aspect_ratio.is_finite();
+        if !valid {
+            return Self { half_angle: PI };
+        }
         let tan_y = (0.5 * fov_y).tan();
         let half_diagonal = (tan_y * (1.0 + aspect_ratio * aspect_ratio).sqrt()).atan();
         Self {
@@ -269,7 +277,7 @@ impl Focus {
         let cone = forward
             .try_normalize()
             .filter(|_| view.half_angle >= 0.0)
-            .map(|f| (f, view.half_angle.min(std::f32::consts::PI).cos()));
+            .map(|f| (f, view.half_angle.min(PI).cos()));
         Self {
             position,
             view: cone,
@@ -410,5 +418,23 @@ mod tests {
         assert_eq!(focus.tier(&tiers, -corner * 30.0), 4);
         let beyond = Vec3::new(corner.x * 1.5, corner.y * 1.5, -1.0);
         assert_eq!(focus.tier(&tiers, beyond * 30.0), 4);
+        // Hostile fields of view or aspect ratios see everything: nothing is coarsened for it.
+        for (fov, aspect) in [
+            (f32::NAN, 1.0),
+            (-1.0, 1.0),
+            (0.0, 1.0),
+            (4.0, 1.0),
+            (1.0, 0.0),
+        ]
+        .into_iter()
+        .chain([(1.0, f32::INFINITY), (1.0, f32::NAN)])
+        {
+            let view = LodView::from_fov(fov, aspect);
+            let blind = Focus::looking(Vec3::ZERO, Vec3::NEG_Z, view);
+            assert_eq!(blind.tier(&tiers, -corner * 30.0), 2, "{fov} {aspect}");
+        }
+        // A huge aspect ratio still gives a cone within a half-space plus the margin.
+        let wide = LodView::from_fov(1.0, 1e30).half_angle;
+        assert!(wide.is_finite() && wide <= 0.5 * PI + LodView::MARGIN + 1e-6);
     }
 }
