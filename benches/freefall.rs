@@ -61,6 +61,11 @@ fn drag_particles(points: &mut [(Vec3, Vec3)], wind: &WindField, dt: f32) {
 /// A headless app of 10 000 falling objects, one fixed step per update, in wind or still air,
 /// with levels of detail (`FallLod`, a `LodFocus` at (30, 2, −20)) or without.
 fn falling_app(lod: bool, wind: bool) -> App {
+    falling_app_of(OBJECTS, lod, wind)
+}
+
+/// [`falling_app`] with `objects` objects.
+fn falling_app_of(objects: usize, lod: bool, wind: bool) -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, TransformPlugin))
         .insert_resource(Time::<Fixed>::from_seconds(f64::from(DT)))
@@ -74,7 +79,7 @@ fn falling_app(lod: bool, wind: bool) -> App {
     if wind {
         app.add_plugins(WindPlugin::default());
     }
-    for i in 0..OBJECTS {
+    for i in 0..objects {
         let mut e = app.world_mut().spawn((
             FallingObject {
                 seed: i as u64,
@@ -109,7 +114,7 @@ fn falling_app(lod: bool, wind: bool) -> App {
         .iter(app.world())
         .filter(|s| s.path().is_some_and(|p| !p.landed()))
         .count();
-    assert_eq!(falling, OBJECTS, "every object must be falling");
+    assert_eq!(falling, objects, "every object must be falling");
     app
 }
 
@@ -124,6 +129,30 @@ fn assert_aloft(app: &mut App) {
         lowest > 10.0,
         "an object fell to {lowest} m: out of the wind"
     );
+}
+
+/// What Bevy itself charges for `entities` entities whose transforms change every frame (a
+/// trivial system writes them; propagation, change detection, schedule).
+fn baseline_app(entities: usize) -> App {
+    baseline_app_with(entities, |_| {})
+}
+
+/// [`baseline_app`] with `extra` applied before it is finished (plugins, resources).
+fn baseline_app_with(entities: usize, extra: impl FnOnce(&mut App)) -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin))
+        .add_systems(Update, |mut q: Query<&mut Transform>| {
+            q.par_iter_mut().for_each(|mut t| t.translation.y -= 1e-3);
+        });
+    for i in 0..entities {
+        app.world_mut()
+            .spawn(Transform::from_translation(release_point(i)));
+    }
+    extra(&mut app);
+    app.finish();
+    app.cleanup();
+    app.update();
+    app
 }
 
 fn step(c: &mut Criterion) {
@@ -218,21 +247,40 @@ fn step(c: &mut Criterion) {
         b.iter(|| app.update());
         assert_aloft(&mut app);
     });
+    // The same app with no object: what the plugins' systems and the fixed-step loop cost
+    // whatever the number of objects.
+    group.bench_function("plugin_app_update_no_objects", |b| {
+        let mut app = falling_app_of(0, false, true);
+        b.iter(|| app.update())
+    });
     // What Bevy itself charges for 10 000 entities whose transforms change every frame
     // (a trivial system writes them; propagation, change detection, schedule).
     group.bench_function("baseline_bevy_10k_moving_transforms", |b| {
-        let mut app = App::new();
-        app.add_plugins((MinimalPlugins, TransformPlugin))
-            .add_systems(Update, |mut q: Query<&mut Transform>| {
-                q.par_iter_mut().for_each(|mut t| t.translation.y -= 1e-3);
-            });
-        for i in 0..OBJECTS {
-            app.world_mut()
-                .spawn(Transform::from_translation(release_point(i)));
-        }
-        app.finish();
-        app.cleanup();
-        app.update();
+        let mut app = baseline_app(OBJECTS);
+        b.iter(|| app.update())
+    });
+    // Every plugin of the crate in the baseline's app with nothing to move: what the crate
+    // costs a frame when a game uses none of it (one fixed step per frame, as in the benches
+    // above and in a game at the fixed rate).
+    group.bench_function("windfall_plugins_unused", |b| {
+        let mut app = baseline_app_with(0, |app| {
+            app.insert_resource(Time::<Fixed>::from_seconds(f64::from(DT)))
+                .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
+                .add_plugins(bevy_windfall::WindfallPlugins);
+        });
+        b.iter(|| app.update())
+    });
+    // The baseline's app, one fixed step per frame, no plugin of ours.
+    group.bench_function("baseline_bevy_no_entities_fixed_step", |b| {
+        let mut app = baseline_app_with(0, |app| {
+            app.insert_resource(Time::<Fixed>::from_seconds(f64::from(DT)))
+                .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
+        });
+        b.iter(|| app.update())
+    });
+    // The baseline's app with no entity: Bevy's own frame (time, schedules, propagation).
+    group.bench_function("baseline_bevy_no_entities", |b| {
+        let mut app = baseline_app(0);
         b.iter(|| app.update())
     });
     group.finish();

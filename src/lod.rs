@@ -155,6 +155,15 @@ pub(crate) trait HasLodTiers: Component {
 
 /// Puts a [`LodInvalid`] on entities whose tiers of `C` changed and fail their check (warned
 /// once), takes it off when they pass or `C` is removed.
+/// Whether [`check_tiers`] has anything to do: a `C` to check, or a [`LodInvalid`] that a
+/// removed `C` may leave behind.
+pub(crate) fn any_tiers<C: HasLodTiers>(
+    tiers: Query<(), With<C>>,
+    invalid: Query<(), With<LodInvalid>>,
+) -> bool {
+    !(tiers.is_empty() && invalid.is_empty())
+}
+
 pub(crate) fn check_tiers<C: HasLodTiers>(
     mut commands: Commands,
     changed: Query<(Entity, &C, Option<&LodInvalid>), Changed<C>>,

@@ -13,8 +13,10 @@ use bevy::reflect::GetPath;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::time::TimeUpdateStrategy;
 use bevy_windfall::aero::{PhysicalCloth, PhysicalClothState, Pinning};
-use bevy_windfall::freefall::FallPreset;
+use bevy_windfall::freefall::cloud::LeafCloudState;
+use bevy_windfall::freefall::{FallLod, FallPreset, LeafCloud};
 use bevy_windfall::prelude::*;
+use bevy_windfall::wind::{WindShelter, WindSource};
 use common::{STEP, headless_app_with_meshes, ready};
 
 fn card() -> AeroBody {
@@ -394,4 +396,100 @@ fn the_simulation_schedule_can_be_chosen() {
     );
     // It moves down in every frame, not only on fixed steps.
     assert!(heights.windows(2).all(|w| w[1] < w[0]), "{heights:?}");
+}
+
+/// Systems with nothing to do do not run (each would cost a thread wake-up a frame), yet
+/// whatever is spawned after a long idle stretch moves from its first frames, and what is
+/// removed last is cleared: the last wind source and shelter leave the field, the last invalid
+/// levels of detail lose their error.
+#[test]
+fn idle_plugins_wake_for_what_comes_later_and_clear_what_goes() {
+    let mut app = full_app();
+    for _ in 0..20 {
+        app.update();
+    }
+    let leaf = app
+        .world_mut()
+        .spawn((
+            FallPreset::MapleLeaf.object(),
+            Transform::from_xyz(0.0, 6.0, 0.0),
+            FallLod(bevy_windfall::lod::LodTiers {
+                near: f32::NAN,
+                far: 1.0,
+            }),
+        ))
+        .id();
+    let cloud = app
+        .world_mut()
+        .spawn(LeafCloud {
+            count: 40,
+            ..default()
+        })
+        .id();
+    let flag = app
+        .world_mut()
+        .spawn((small_flag(), Transform::from_xyz(5.0, 3.0, 0.0)))
+        .id();
+    let body = app
+        .world_mut()
+        .spawn((card(), Transform::from_xyz(-5.0, 4.0, 0.0)))
+        .id();
+    let source = app
+        .world_mut()
+        .spawn((
+            WindSource::sphere(2.0, Vec3::X * 6.0),
+            Transform::from_xyz(20.0, 3.0, 20.0),
+        ))
+        .id();
+    let shelter = app
+        .world_mut()
+        .spawn((
+            WindShelter::wall(Vec3::new(0.5, 3.0, 10.0)),
+            Transform::from_xyz(-30.0, 0.0, -30.0),
+        ))
+        .id();
+    let cloud_start: Vec<Vec3> = {
+        let state = app.world().get::<LeafCloudState>(cloud).unwrap();
+        state
+            .leaves()
+            .unwrap()
+            .paths()
+            .map(|p| p.position())
+            .collect()
+    };
+    for _ in 0..30 {
+        app.update();
+    }
+    let world = app.world();
+    assert!(world.get::<Transform>(leaf).unwrap().translation.y < 5.9);
+    assert!(world.get::<Transform>(body).unwrap().translation.y < 3.9);
+    let moved = world
+        .get::<LeafCloudState>(cloud)
+        .unwrap()
+        .leaves()
+        .unwrap()
+        .paths()
+        .zip(&cloud_start)
+        .filter(|(p, start)| p.position().distance(**start) > 0.01)
+        .count();
+    assert_eq!(moved, cloud_start.len(), "every cloud leaf moves");
+    let mesh = world.get::<Mesh3d>(flag).expect("the flag has its mesh");
+    assert!(world.resource::<Assets<Mesh>>().get(&mesh.0).is_some());
+    let field = world.resource::<WindField>();
+    assert_eq!((field.source_count(), field.shelter_count()), (1, 1));
+    assert!(field.velocity(Vec3::new(20.0, 3.0, 20.0)).x > field.mean_speed_at(3.0) + 3.0);
+    assert!(world.get::<bevy_windfall::lod::LodInvalid>(leaf).is_some());
+    // The last of each goes.
+    app.world_mut().despawn(source);
+    app.world_mut().despawn(shelter);
+    app.world_mut().entity_mut(leaf).remove::<FallLod>();
+    app.update();
+    app.update();
+    let field = app.world().resource::<WindField>();
+    assert_eq!((field.source_count(), field.shelter_count()), (0, 0));
+    assert!(
+        app.world()
+            .get::<bevy_windfall::lod::LodInvalid>(leaf)
+            .is_none()
+    );
 }

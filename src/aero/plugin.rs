@@ -284,14 +284,25 @@ impl Plugin for AeroPlugin {
             .register_type::<PhysicalCloth>()
             .register_type::<PhysicalClothInvalid>()
             .add_observer(init_on_insert)
+            // Each only with something to move (a system with nothing to do still costs a
+            // wake-up).
             .add_systems(
                 schedule,
-                (step_bodies, step_cloths).in_set(WindfallSystems::Simulate),
+                (
+                    step_bodies.run_if(any_with_component::<AeroState>),
+                    step_cloths.run_if(any_with_component::<PhysicalClothState>),
+                )
+                    .in_set(WindfallSystems::Simulate),
             )
             // Set up in the frame the cloth is added (or changed), before its mesh is written.
             .add_systems(
                 PostUpdate,
-                ((init_cloths, write_cloth_meshes).chain(), pose_bodies)
+                (
+                    (init_cloths, write_cloth_meshes)
+                        .chain()
+                        .run_if(any_with_component::<PhysicalCloth>),
+                    pose_bodies.run_if(any_with_component::<AeroState>),
+                )
                     .in_set(WindfallSystems::WriteBack),
             );
     }

@@ -238,16 +238,25 @@ impl Plugin for ClothPlugin {
             .add_observer(init_on_insert)
             .add_systems(
                 PostUpdate,
-                crate::lod::check_tiers::<ClothLod>.in_set(WindfallSystems::WriteBack),
+                crate::lod::check_tiers::<ClothLod>
+                    .run_if(crate::lod::any_tiers::<ClothLod>)
+                    .in_set(WindfallSystems::WriteBack),
             )
             // Set up in the frame the cloth is added (or changed), before its mesh is written.
+            // Only with a cloth (a system with nothing to do still costs a wake-up).
             .add_systems(
                 PostUpdate,
                 (init_cloths, write_cloth_meshes)
                     .chain()
+                    .run_if(any_with_component::<Cloth>)
                     .in_set(WindfallSystems::WriteBack),
             )
-            .add_systems(schedule, step_cloths.in_set(WindfallSystems::Simulate));
+            .add_systems(
+                schedule,
+                step_cloths
+                    .run_if(any_with_component::<Cloth>)
+                    .in_set(WindfallSystems::Simulate),
+            );
     }
 }
 

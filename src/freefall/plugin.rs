@@ -326,14 +326,24 @@ impl Plugin for FreeFallPlugin {
             .init_resource::<FallClock>()
             .add_message::<Landed>()
             .add_observer(release_on_insert)
-            .add_systems(schedule, step_objects.in_set(WindfallSystems::Simulate))
+            // Every system runs only when there is something for it (see `crate::lod::any_tiers`):
+            // a system the executor hands to a worker costs a thread wake-up even when it has
+            // nothing to do.
+            .add_systems(
+                schedule,
+                step_objects
+                    .in_set(WindfallSystems::Simulate)
+                    .run_if(any_with_component::<FallingObject>),
+            )
             // Releasing here (not in the simulation) reads the transform the user set this
             // frame before `pose_objects` would overwrite it.
             .add_systems(
                 PostUpdate,
                 (
-                    (release_objects, pose_objects).chain(),
-                    crate::lod::check_tiers::<FallLod>,
+                    (release_objects, pose_objects)
+                        .chain()
+                        .run_if(any_with_component::<FallingObject>),
+                    crate::lod::check_tiers::<FallLod>.run_if(crate::lod::any_tiers::<FallLod>),
                 )
                     .in_set(WindfallSystems::WriteBack),
             );

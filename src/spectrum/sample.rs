@@ -35,13 +35,17 @@ where
 }
 
 /// A node coordinate `c` on a periodic axis of `n` nodes: the node below, the one after it
-/// (wrapping) and the fraction between. `c − n⌊c/n⌋` rather than `rem_euclid` (fmod is a
-/// slower library call than floor; an exact floor through i64 measured slower still); a
-/// non-finite coordinate reads as 0.
+/// (wrapping) and the fraction between; a non-finite coordinate reads as 0.
+///
+/// `c − n⌊c/n⌋` with the quotient as a product by 1/n (a division stalls the read; the
+/// product is exact for power-of-two `n` and within an ulp of the quotient otherwise, which
+/// the clamp below absorbs). `rem_euclid` is a slower library call; a floor through `i64`, or
+/// by adding and taking away 2^52, measured slower than the library's `floor` (504 and 495 µs
+/// against 460 µs for 10 000 reads).
 #[inline]
 fn wrap(c: f64, n: usize) -> (usize, usize, f32) {
     let len = n as f64;
-    let c = c - (c / len).floor() * len;
+    let c = c - (c * (1.0 / len)).floor() * len;
     let c = if c.is_finite() {
         c.clamp(0.0, len)
     } else {
@@ -94,5 +98,35 @@ mod tests {
             assert!((a - b).abs() < 1e-5, "{x} {y}: {a} vs {b}");
         }
         assert!(periodic_lerp_2d(&shape, &values, f64::NAN, f64::INFINITY).is_finite());
+    }
+
+    #[test]
+    fn wrap_lands_on_the_grid_for_any_coordinate() {
+        for n in [1usize, 2, 3, 7, 100, 128] {
+            for k in -3000..3000 {
+                let c = k as f64 * 0.731 + 1e-3;
+                let (i, next, f) = wrap(c, n);
+                assert!(i < n && next < n && (0.0..=1.0).contains(&f), "{c} {n}");
+                // The same point of the period as the exact remainder.
+                let exact = c.rem_euclid(n as f64);
+                let got = i as f64 + f64::from(f);
+                let d = (got - exact).abs();
+                assert!(
+                    d < 1e-6 || (d - n as f64).abs() < 1e-6,
+                    "{c} {n}: {got} vs {exact}"
+                );
+            }
+            for c in [
+                f64::NAN,
+                f64::INFINITY,
+                -f64::INFINITY,
+                1e300,
+                -1e300,
+                4.5e15,
+            ] {
+                let (i, next, f) = wrap(c, n);
+                assert!(i < n && next < n && f.is_finite(), "{c} {n}");
+            }
+        }
     }
 }

@@ -216,7 +216,9 @@ impl WindConfig {
         // Checked on what is used, ln(h/z0) (eq. 10's denominator), not on h > z0 alone: one
         // f32 step above z0 would round the logarithm to 0 and every sample to NaN.
         check(
-            h.is_finite() && h > z0 && h.ln() - z0.ln() >= MIN_LOG_RATIO,
+            h.is_finite()
+                && h > z0
+                && super::profile::ln(h) - super::profile::ln(z0) >= MIN_LOG_RATIO,
             "reference_height",
             h,
             "must be finite and at least 1.105 × `roughness` (ln(h/z0) ≥ 0.1)",

@@ -62,8 +62,12 @@ pub struct WindField {
     /// Unit-variance turbulence (u, v, w) per node, row-major over `[time?, x, y?, z]`.
     nodes: Vec<Vec3>,
     friction_velocity: f32,
-    /// ln(h_ref/z0), the denominator of eq. 14.
+    /// ln(h_ref/z0), the denominator of eq. 14 ...
     log_reference: f32,
+    /// ... and its reciprocal (a sample multiplies; a division stalls the read).
+    inv_log_reference: f32,
+    /// Nodes per metre, 1 / cell size.
+    per_cell: f64,
     /// ln(z0).
     log_roughness: f32,
     sigma_u: f32,
@@ -136,6 +140,8 @@ impl WindField {
             nodes,
             friction_velocity: 0.0,
             log_reference: 1.0,
+            inv_log_reference: 1.0,
+            per_cell: 1.0,
             log_roughness: 0.0,
             sigma_u: 0.0,
             along: Vec3::X,
@@ -165,7 +171,9 @@ impl WindField {
             .unwrap_or_else(|| profile::surface_layer_intensity(c.reference_height, c.roughness));
         self.sigma_u = intensity * c.reference_speed;
         self.log_reference = profile::log_ratio(c.reference_height, c.roughness);
-        self.log_roughness = c.roughness.ln();
+        self.inv_log_reference = 1.0 / self.log_reference;
+        self.per_cell = 1.0 / f64::from(c.cell_size);
+        self.log_roughness = profile::ln(c.roughness);
         // Validated: the direction has a unit vector, whatever its length.
         let d = crate::guard::unit_vec2(c.direction).unwrap_or(Vec2::X);
         self.along = Vec3::new(d.x, 0.0, d.y);
@@ -494,11 +502,11 @@ impl WindField {
         let height = position.y;
         // Mean speed, turbulence scale and advection speed at this height; one logarithm.
         let log_ratio = if height > c.roughness {
-            (height.min(f32::MAX).ln() - self.log_roughness).max(0.0)
+            (profile::ln(height.min(f32::MAX)) - self.log_roughness).max(0.0)
         } else {
             0.0
         };
-        let g = log_ratio / self.log_reference; // eq. 14
+        let g = log_ratio * self.inv_log_reference; // eq. 14
         // `travel`: how the pattern's travel at this height compares with the reference's.
         let (mean, scale, advection, travel) = match c.spatial {
             SpatialMode::Plane => (c.reference_speed * g, g, c.reference_speed, 1.0),
@@ -512,7 +520,7 @@ impl WindField {
         // booked before the last change of speed or direction, plus U × the time since).
         let shift = f64::from(advection) * (time - self.drift_since);
         let base = self.drift_base * f64::from(travel);
-        let per_cell = 1.0 / f64::from(c.cell_size);
+        let per_cell = self.per_cell;
         let x = (f64::from(position.x) - (base.x + f64::from(self.along.x) * shift)) * per_cell;
         let z = (f64::from(position.z) - (base.y + f64::from(self.along.z) * shift)) * per_cell;
         let n = if self.shape.dims().len() == 2 {
@@ -532,7 +540,7 @@ impl WindField {
     /// The turbulence read on a 3- or 4-D grid.
     fn sample_nd(&self, position: Vec3, time: f64, x: f64, z: f64) -> Vec3 {
         let c = &self.config;
-        let per_cell = 1.0 / f64::from(c.cell_size);
+        let per_cell = self.per_cell;
         let mut coords = [0.0f64; 4];
         let mut axes = 0;
         if let TemporalMode::Evolving { samples, period } = c.temporal {

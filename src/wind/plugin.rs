@@ -7,7 +7,7 @@ use bevy::math::Affine3A;
 use bevy::time::Time;
 use bevy::transform::components::{GlobalTransform, Transform};
 
-use super::rebuild::land_wind_rebuild;
+use super::rebuild::{WindRebuild, land_wind_rebuild};
 use super::shelter::{PlacedShelter, ShelterKind, WindShelter};
 use super::source::{PlacedSource, SourceShape, WindSource};
 use super::{WindConfig, WindField, WindRebuilt, WindSettings, apply_wind_settings};
@@ -66,9 +66,11 @@ impl Plugin for WindPlugin {
             .add_systems(
                 schedule,
                 (
-                    land_wind_rebuild,
+                    land_wind_rebuild.run_if(resource_exists::<WindRebuild>),
                     advance_wind_clock.run_if(resource_exists::<WindField>),
-                    place_wind_sources.run_if(resource_exists::<WindField>),
+                    // Only with a source or shelter to place, or placed ones to clear (a system
+                    // with nothing to do still costs a wake-up).
+                    place_wind_sources.run_if(anything_to_place),
                 )
                     .chain()
                     .in_set(WindfallSystems::Wind),
@@ -93,6 +95,21 @@ impl Plugin for WindPlugin {
             app.insert_resource(WindSettings::new(config));
         }
     }
+}
+
+/// Whether [`place_wind_sources`] has work: a field, and a source or shelter to place or placed
+/// ones to clear.
+fn anything_to_place(
+    sources: Query<(), With<WindSource>>,
+    shelters: Query<(), With<WindShelter>>,
+    wind: Option<Res<WindField>>,
+) -> bool {
+    wind.is_some_and(|w| {
+        !(sources.is_empty()
+            && shelters.is_empty()
+            && w.source_count() == 0
+            && w.shelter_count() == 0)
+    })
 }
 
 /// Advances the [`WindField`] clock by one step of the schedule's clock (the fixed step in

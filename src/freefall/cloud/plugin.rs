@@ -75,10 +75,19 @@ impl Plugin for LeafCloudPlugin {
             .register_type::<LodTiers>()
             .init_resource::<FreeFallSettings>()
             .add_observer(release_on_insert)
-            .add_systems(schedule, step_clouds.in_set(WindfallSystems::Simulate))
+            // Only with a cloud to move (a system with nothing to do still costs a wake-up).
+            .add_systems(
+                schedule,
+                step_clouds
+                    .in_set(WindfallSystems::Simulate)
+                    .run_if(any_with_component::<LeafCloud>),
+            )
             .add_systems(
                 PostUpdate,
-                (release_clouds, pose_clouds)
+                (
+                    release_clouds.run_if(any_with_component::<LeafCloud>),
+                    pose_clouds.run_if(any_with_component::<LeafCloudState>),
+                )
                     .chain()
                     .in_set(WindfallSystems::WriteBack),
             );
