@@ -326,9 +326,8 @@ impl Plugin for FreeFallPlugin {
             .init_resource::<FallClock>()
             .add_message::<Landed>()
             .add_observer(release_on_insert)
-            // Every system runs only when there is something for it (see `crate::lod::any_tiers`):
-            // a system the executor hands to a worker costs a thread wake-up even when it has
-            // nothing to do.
+            // Every system runs only when there is something for it: a system the executor hands
+            // to a worker costs a thread wake-up even when it has nothing to do.
             .add_systems(
                 schedule,
                 step_objects
