@@ -240,10 +240,14 @@ impl TrajectoryDatabase {
     /// The cluster whose centre is nearest to `key` (the search key of §2.3.1, a feature vector
     /// in the fall's units; non-finite components count as 0).
     pub fn nearest_cluster(&self, key: &Feature) -> usize {
-        let key = self.scaled_key(key);
+        self.nearest_to_scaled(&self.scaled_key(key))
+    }
+
+    /// [`Self::nearest_cluster`] of a key already scaled.
+    fn nearest_to_scaled(&self, key: &Feature) -> usize {
         let mut best = (0, f32::INFINITY);
         for (i, c) in self.centroids.iter().enumerate() {
-            let d = distance_squared(c, &key);
+            let d = distance_squared(c, key);
             if d < best.1 {
                 best = (i, d);
             }
@@ -255,7 +259,7 @@ impl TrajectoryDatabase {
     /// cluster that are nearest to the key, at random.
     pub fn find(&self, key: &Feature, rng: &mut FallRng) -> u32 {
         let scaled = self.scaled_key(key);
-        let members = &self.members[self.nearest_cluster(key)];
+        let members = &self.members[self.nearest_to_scaled(&scaled)];
         let mut best = [(u32::MAX, f32::INFINITY); CANDIDATES];
         for &m in members {
             let d = distance_squared(&self.scaled[m as usize], &scaled);

@@ -432,9 +432,13 @@ impl Piece {
                 let offset = Vec3::new(sign * p.x * scale * sideways, p.y * scale, 0.0);
                 (offset, rotation_z(start_half, turn * progress))
             }
-            Self::Curve { start, .. } => (self.curve_at(start + t) - self.curve_at(start), {
-                self.curve_tilt(t)
-            }),
+            Self::Curve { start, .. } => {
+                let (position, velocity) = self.curve_motion(start + t);
+                (
+                    position - self.curve_motion(start).0,
+                    self.curve_tilt(velocity),
+                )
+            }
         }
     }
 
@@ -448,7 +452,12 @@ impl Piece {
         self.sample(db, t).1
     }
 
-    fn curve_at(&self, time: f32) -> Vec3 {
+    /// Eq. 6 at curve time `time` and its time derivative, from one `sin_cos` of the phase and
+    /// one of the lobes' phase: r = A(1 + ε sin kφ), φ = Ω t, p = (r cos φ, −U t, r sin φ), so
+    /// ṗ = (ṙ cos φ − r Ω sin φ, −U, ṙ sin φ + r Ω cos φ) with ṙ = A ε k Ω cos kφ. (A finite
+    /// difference in f32 loses its digits as curve time grows: at 100 s a step of 1 ms is
+    /// 1 % of the time's last bit.)
+    fn curve_motion(&self, time: f32) -> (Vec3, Vec3) {
         let Self::Curve {
             amplitude,
             eccentricity,
@@ -458,29 +467,30 @@ impl Piece {
             ..
         } = *self
         else {
-            return Vec3::ZERO;
+            return (Vec3::ZERO, Vec3::ZERO);
         };
         let phase = rate * time;
-        let radius = amplitude * (1.0 + eccentricity * (lobes * phase).sin());
+        let (sl, cl) = (lobes * phase).sin_cos();
+        let radius = amplitude * (1.0 + eccentricity * sl);
+        let d_radius = amplitude * eccentricity * lobes * rate * cl;
         let (s, c) = phase.sin_cos();
-        Vec3::new(radius * c, -descent * time, radius * s)
+        (
+            Vec3::new(radius * c, -descent * time, radius * s),
+            Vec3::new(
+                d_radius * c - radius * rate * s,
+                -descent,
+                d_radius * s + radius * rate * c,
+            ),
+        )
     }
 
-    /// A curve's plate leans into its horizontal velocity by half its glide angle (after the
-    /// half-turns it carries).
-    fn curve_tilt(&self, t: f32) -> Quat {
-        let Self::Curve {
-            start,
-            descent,
-            flip,
-            ..
-        } = *self
-        else {
+    /// A curve's plate leans into its horizontal velocity `velocity` by half its glide angle
+    /// (after the half-turns it carries).
+    fn curve_tilt(&self, velocity: Vec3) -> Quat {
+        let Self::Curve { descent, flip, .. } = *self else {
             return Quat::IDENTITY;
         };
-        let h = 1e-3;
-        let v = (self.curve_at(start + t + h) - self.curve_at(start + t)) / h;
-        let horizontal = Vec2::new(v.x, v.z);
+        let horizontal = Vec2::new(velocity.x, velocity.z);
         let speed = horizontal.length();
         let base = Quat::from_rotation_z(flip);
         if speed > 1e-6 && speed.is_finite() {
@@ -576,6 +586,39 @@ mod tests {
     }
 
     use super::*;
+
+    #[test]
+    fn curve_velocity_is_the_derivative_of_eq_6() {
+        let piece = |eccentricity| Piece::Curve {
+            amplitude: 0.05,
+            eccentricity,
+            lobes: 3.0,
+            rate: 7.0,
+            descent: 0.4,
+            start: 0.0,
+            duration: 1.0,
+            flip: 0.0,
+        };
+        let lobed = piece(0.3);
+        for tau in [0.1f32, 0.37, 1.2] {
+            let h = 1e-3;
+            let (ahead, behind) = (lobed.curve_motion(tau + h).0, lobed.curve_motion(tau - h).0);
+            let difference = (ahead - behind) / (2.0 * h);
+            let velocity = lobed.curve_motion(tau).1;
+            assert!(
+                (difference - velocity).length() < 2e-3 * velocity.length(),
+                "{tau}: {difference} vs {velocity}"
+            );
+        }
+        // A circle (ε = 0) is swept at A Ω whenever it is, long into a fall too.
+        let circle = piece(0.0);
+        for tau in [0.2f32, 50.0, 500.0] {
+            let v = circle.curve_motion(tau).1;
+            let speed = Vec2::new(v.x, v.z).length();
+            assert!((speed - 0.05 * 7.0).abs() < 1e-5, "{tau}: {speed}");
+            assert_eq!(v.y, -0.4);
+        }
+    }
 
     #[test]
     fn small_angle_series_is_accurate() {
