@@ -36,6 +36,7 @@ mod model;
 mod motion;
 pub mod ode;
 mod path;
+mod piece;
 mod plugin;
 mod presets;
 mod random;
@@ -57,8 +58,9 @@ pub use gizmos::{FallGizmos, FallGizmosPlugin, FallTrail, motion_color};
 pub use lod::FallLod;
 pub use markov::{BoundedChain, CHAIN_STEP, MarkovChain, MarkovError, motion_class_count};
 pub use model::FallModel;
-pub use motion::{CHAOTIC_MIN_TIME, FallScales, Glide, Piece, STROUHAL, SwingChoice};
+pub use motion::{CHAOTIC_MIN_TIME, FallScales, Glide, STROUHAL};
 pub use path::{FallPath, StepOutcome, WindTilt};
+pub use piece::{Piece, SwingChoice};
 pub use plugin::{
     FallState, FallingObject, FallingObjectInvalid, FreeFallPlugin, FreeFallSettings, Landed,
 };
