@@ -144,15 +144,16 @@ fn grass_reason(frame: &Frame) -> Option<String> {
 }
 
 /// The storm of the leaves scene: specks of leaf colour (red above blue) in the sky right of the
-/// trunk, clear of the panel, counted as runs of warm pixels per 1000 pixels. The storm's cloud
-/// gives 15–23 there (many small leaves far off); the 600 featured leaves alone about 1 (a few
-/// large ones near the tree).
+/// trunk, below the header text and the inspector panel (which now cover the upper sky), counted
+/// as runs of warm pixels per 1000 pixels. In CI's 640 × 360 frames the storm's cloud gives
+/// about 7 there (many small leaves far off); the other scenes 0–5 (the measure is checked on
+/// the leaves scene only). The upper sky, measured before the panel came, had fallen to 4.9–5.5.
 fn storm_specks(frame: &Frame) -> f64 {
     let (w, h) = (frame.width, frame.height);
     let (mut runs, mut n) = (0usize, 0usize);
-    for y in (h * 30 / 100)..(h * 75 / 100) {
+    for y in (h * 58 / 100)..(h * 85 / 100) {
         let mut previous = false;
-        for x in (w * 30 / 100)..(w * 65 / 100) {
+        for x in (w * 35 / 100)..(w * 95 / 100) {
             let p = frame.rgb[y * w + x];
             let warm = i32::from(p[0]) > i32::from(p[2]) + 25;
             runs += usize::from(warm && !previous);
@@ -227,7 +228,7 @@ fn the_checker_rejects_blank_frames_and_accepts_a_scene() {
     assert_eq!(grass_reason(&blades), None);
     // A sky with a few large leaves is no storm; one speckled with small leaves (2 %) is.
     let few = synthetic(|x, y| {
-        if (x % 80 < 12) && (60..72).contains(&y) {
+        if (x % 80 < 12) && (110..122).contains(&y) {
             [200, 90, 30]
         } else {
             [150, 190, 220]
