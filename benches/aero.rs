@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use bevy::math::Vec3;
 use bevy_windfall::aero::{
-    AIR_DENSITY, AeroCoefficients, ParticleCloth, Pinning, PlateState, RigidPlate, face_force,
+    AeroCoefficients, ParticleCloth, Pinning, PlateState, RigidPlate, face_force,
 };
 use bevy_windfall::cloth::{ClothAttachment, ClothGrid, ClothPreset, ClothSim};
 use bevy_windfall::freefall::{FallModel, FallPath, FallingObject, WindTilt};
@@ -42,7 +42,7 @@ fn faces(c: &mut Criterion) {
         b.iter(|| {
             let mut total = Vec3::ZERO;
             for (v, n) in &data {
-                total += face_force(*v, *n, 1e-3, 1.2, 1.0, AIR_DENSITY);
+                total += face_force(*v, *n, 1e-3, 1.2, 1.0, AeroCoefficients::AIR_DENSITY);
             }
             black_box(total)
         })
@@ -105,7 +105,7 @@ fn faces(c: &mut Criterion) {
         width: 1.5,
         height: 1.0,
     };
-    let params = ClothPreset::FlagGentleFrozen.params();
+    let params = ClothPreset::FlagFlappingFrozen.params();
     let mut procedural = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
     group.bench_function("flag_step_24x16/procedural", |b| {
         b.iter(|| {

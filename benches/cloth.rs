@@ -3,12 +3,11 @@
 //!
 //! Run: `cargo bench --bench cloth`. Figures are in the README's Performance section.
 
+use bevy_windfall::cloth::Cloth;
 use std::hint::black_box;
 use std::time::Duration;
 
-use bevy_windfall::cloth::{
-    ClothAttachment, ClothGrid, ClothPreset, ClothSim, cloth_mesh, write_cloth_mesh,
-};
+use bevy_windfall::cloth::{ClothAttachment, ClothGrid, ClothPreset, ClothSim};
 use criterion::{BenchmarkId, Criterion, criterion_main};
 
 fn frame(c: &mut Criterion) {
@@ -19,8 +18,8 @@ fn frame(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(2));
     for size in [16usize, 32, 64, 128] {
         for preset in [
-            ClothPreset::FlagGentleFrozen,
-            ClothPreset::FlagGentleNonFrozen,
+            ClothPreset::FlagFlappingFrozen,
+            ClothPreset::FlagFlappingEvolving,
         ] {
             let grid = ClothGrid {
                 rows: size,
@@ -30,13 +29,13 @@ fn frame(c: &mut Criterion) {
             };
             let params = preset.params();
             let mut sim = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
-            let mut mesh = cloth_mesh(size, size, sim.positions());
+            let mut mesh = Cloth::mesh(size, size, sim.positions());
             let name = format!("{size}x{size}/{preset:?}");
             group.bench_function(BenchmarkId::new("step_rebuild_mesh", name), |b| {
                 b.iter(|| {
                     sim.advance(1.0 / 64.0, params.wind_speed);
                     sim.rebuild();
-                    write_cloth_mesh(&mut mesh, size, size, black_box(sim.positions()));
+                    Cloth::write_mesh(&mut mesh, size, size, black_box(sim.positions()));
                 })
             });
         }
@@ -51,15 +50,15 @@ fn frame(c: &mut Criterion) {
             width: 1.5,
             height: 1.0,
         };
-        let params = ClothPreset::FlagGentleFrozen.params();
+        let params = ClothPreset::FlagFlappingFrozen.params();
         let mut sim = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
-        let mut mesh = cloth_mesh(size, size, sim.positions());
+        let mut mesh = Cloth::mesh(size, size, sim.positions());
         let name = format!("64x64/stride_{stride}");
         group.bench_function(BenchmarkId::new("step_rebuild_mesh_lod", name), |b| {
             b.iter(|| {
                 sim.advance(1.0 / 64.0, params.wind_speed);
                 sim.rebuild_at_stride(1.0, stride);
-                write_cloth_mesh(&mut mesh, size, size, black_box(sim.positions()));
+                Cloth::write_mesh(&mut mesh, size, size, black_box(sim.positions()));
             })
         });
     }

@@ -5,12 +5,13 @@
 //!
 //! Run: `cargo bench --bench cloud`. Figures are in the README's Performance section.
 
+use bevy_windfall::lod::LodTiers;
 use std::time::Duration;
 
 use bevy::math::Vec3;
 use bevy::tasks::{ParallelSliceMut, TaskPool, TaskPoolBuilder};
-use bevy_windfall::freefall::cloud::{CLOUD_CHUNK, CloudLeaves, CloudStep};
-use bevy_windfall::freefall::{CloudLod, CloudRegion, FallModel, LeafCloud, WindTilt};
+use bevy_windfall::freefall::cloud::{CloudLeaves, CloudStep};
+use bevy_windfall::freefall::{CloudRegion, FallModel, LeafCloud, WindTilt};
 use bevy_windfall::lod::{Focus, LodView};
 use bevy_windfall::wind::{WindConfig, WindField};
 use criterion::{BatchSize, Criterion, criterion_main};
@@ -18,7 +19,7 @@ use criterion::{BatchSize, Criterion, criterion_main};
 const LEAVES: u32 = 100_000;
 const DT: f32 = 1.0 / 60.0;
 
-fn storm(lod: CloudLod) -> LeafCloud {
+fn storm(lod: LodTiers) -> LeafCloud {
     LeafCloud {
         count: LEAVES,
         seed: 7,
@@ -36,7 +37,7 @@ fn storm(lod: CloudLod) -> LeafCloud {
 fn warmed(
     model: &FallModel,
     wind: &WindField,
-    lod: CloudLod,
+    lod: LodTiers,
     focus: Option<Focus>,
     pool: &TaskPool,
 ) -> CloudLeaves {
@@ -64,7 +65,7 @@ fn step<'a>(model: &'a FallModel, wind: &'a WindField, focus: Option<Focus>) -> 
 /// The baseline: explicit drag particles, chunked on the same pool.
 fn drag_particles(mut particles: &mut [(Vec3, Vec3)], wind: &WindField, pool: &TaskPool) {
     let c = 0.5 * 1.2 * 1.2 * 2.4e-3 / 3.6e-4; // ½ ρ C_D A / m for the default leaf
-    particles.par_chunk_map_mut(pool, CLOUD_CHUNK, |_, chunk| {
+    particles.par_chunk_map_mut(pool, CloudLeaves::CHUNK, |_, chunk| {
         for (x, v) in chunk.iter_mut() {
             let relative = wind.velocity(*x) - *v;
             *v += (Vec3::new(0.0, -9.81, 0.0) + c * relative.length() * relative) * DT;
@@ -77,7 +78,7 @@ fn cloud(c: &mut Criterion) {
     let pool = TaskPoolBuilder::new().num_threads(2).build();
     let model = FallModel::default();
     let wind = WindField::new(WindConfig::default()).unwrap();
-    let full = warmed(&model, &wind, CloudLod::FULL, None, &pool);
+    let full = warmed(&model, &wind, LodTiers::FULL, None, &pool);
     println!(
         "cloud: {} bytes a leaf ({} of them a FallPath)",
         full.memory_bytes() / full.len(),
@@ -115,7 +116,7 @@ fn cloud(c: &mut Criterion) {
             Focus::looking(centre, Vec3::Z, LodView::default()),
         ),
     ] {
-        let tiered = warmed(&model, &wind, CloudLod::default(), Some(focus), &pool);
+        let tiered = warmed(&model, &wind, LodTiers::default(), Some(focus), &pool);
         let advanced = tiered
             .clone()
             .step(&step(&model, &wind, Some(focus)), Some(&pool))

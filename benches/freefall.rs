@@ -70,7 +70,7 @@ fn falling_app_of(objects: usize, lod: bool, wind: bool) -> App {
     app.add_plugins((MinimalPlugins, TransformPlugin))
         .insert_resource(Time::<Fixed>::from_seconds(f64::from(DT)))
         .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-        .add_plugins(FreeFallPlugin)
+        .add_plugins(FreeFallPlugin::default())
         .insert_resource(FreeFallSettings {
             // Far below (within the ±1e7 m a ground may be): every object falls for the whole
             // run.

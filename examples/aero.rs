@@ -98,7 +98,7 @@ fn setup(
     commands.spawn((
         Cloth {
             grid,
-            params: ClothPreset::FlagGentleFrozen.params(),
+            params: ClothPreset::FlagFlappingFrozen.params(),
             ..default()
         },
         MeshMaterial3d(cloth_material(&mut materials, Color::srgb(0.8, 0.15, 0.15))),

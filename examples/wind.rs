@@ -11,7 +11,7 @@ use std::collections::VecDeque;
 
 use bevy::prelude::*;
 use bevy_windfall::prelude::*;
-use bevy_windfall::wind::{WindGizmos, speed_class_color};
+use bevy_windfall::wind::WindGizmos;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -159,7 +159,8 @@ fn draw_trails(wind: Res<WindField>, tracers: Query<&Tracer>, mut gizmos: Gizmos
         let Some(&head) = tracer.trail.front() else {
             continue;
         };
-        let color = speed_class_color(wind.velocity(head).length(), wind.mean_speed_at(head.y));
+        let color =
+            WindGizmos::speed_class_color(wind.velocity(head).length(), wind.mean_speed_at(head.y));
         gizmos.linestrip(tracer.trail.iter().copied(), color);
     }
 }

@@ -3,6 +3,12 @@
 
 use bevy::math::{Quat, Vec2, Vec3};
 
+/// Largest accepted size of a body (a falling plate, a rigid plate), m: far beyond any use, small enough that every derived number stays
+/// finite in f32.
+pub(crate) const MAX_SIZE: f32 = 1.0e3;
+/// Smallest accepted size of a body, m (0.1 µm).
+pub(crate) const MIN_SIZE: f32 = 1.0e-7;
+
 /// Largest coordinate, m, a simulated pose may have. Beyond it an f32 position cannot resolve a
 /// metre (its spacing exceeds 1 m at 1.7e7), far past any motion this crate makes, and products
 /// of positions would overflow long before f32::MAX.
@@ -75,6 +81,31 @@ pub(crate) fn bad_affine(affine: &bevy::math::Affine3A) -> Option<f32> {
     bad_position(affine.translation.into())
 }
 
+/// What a global transform must be to place a simulation (the reason of a `transform` error).
+pub(crate) const TRANSFORM_REASON: &str = "the global transform must be finite, invertible and \
+                                           within ±MAX_COORDINATE (1e7 m)";
+
+/// What a position must be (the reason of a `position` error).
+pub(crate) const POSITION_REASON: &str = "must be finite and within ±MAX_COORDINATE (1e7 m)";
+
+/// What a ground height must be.
+pub(crate) const GROUND_REASON: &str =
+    "must be within ±MAX_COORDINATE (1e7 m), or −∞ for no ground";
+
+/// [`bad_affine`] as a check: the error names the field `transform`.
+pub(crate) fn check_affine(
+    affine: &bevy::math::Affine3A,
+) -> Result<(), crate::error::InvalidValue> {
+    match bad_affine(affine) {
+        None => Ok(()),
+        Some(value) => Err(crate::error::InvalidValue {
+            field: "transform",
+            value,
+            reason: TRANSFORM_REASON,
+        }),
+    }
+}
+
 /// The rotation `q` describes, normalised, or `None` for a non-finite or zero quaternion (which
 /// describes none).
 pub(crate) fn unit_quat(q: Quat) -> Option<Quat> {
@@ -89,6 +120,14 @@ pub(crate) fn unit_quat(q: Quat) -> Option<Quat> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn reasons_quote_the_bound() {
+        assert_eq!(MAX_COORDINATE, 1e7, "update the reasons that quote it");
+        for reason in [TRANSFORM_REASON, POSITION_REASON, GROUND_REASON] {
+            assert!(reason.contains("(1e7 m)"), "{reason}");
+        }
+    }
 
     #[test]
     fn unit_vectors_of_every_finite_length() {

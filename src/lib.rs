@@ -18,15 +18,15 @@
 //! - [Determinism and multiplayer](#determinism-and-multiplayer)
 //! - [Browsers (wasm)](#browsers-wasm)
 //! - [Cargo features](#cargo-features)
+//! - [How the crate is laid out](#how-the-crate-is-laid-out)
 //!
 //! # Getting started
 //!
-//! Add [`WindfallPlugins`] and spawn what the wind should move; everything is positioned by its
+//! Add [`WindfallPlugins`](struct@WindfallPlugins) and spawn what the wind should move; everything is positioned by its
 //! [`Transform`](bevy::transform::components::Transform).
 //!
 //! ```
 //! use bevy::prelude::*;
-//! use bevy_windfall::freefall::FallPreset;
 //! use bevy_windfall::prelude::*;
 //!
 //! let mut app = App::new();
@@ -38,7 +38,7 @@
 //!     .spawn((FallPreset::MapleLeaf.object(), Transform::from_xyz(0.0, 5.0, 0.0)))
 //!     .id();
 //! app.world_mut().spawn((
-//!     Cloth { params: ClothPreset::FlagGentleFrozen.params(), ..default() },
+//!     Cloth { params: ClothPreset::FlagFlappingFrozen.params(), ..default() },
 //!     Transform::from_xyz(2.0, 6.0, 0.0),
 //! ));
 //! app.update();
@@ -63,7 +63,7 @@
 //! Local wind: a [`WindSource`](wind::WindSource) component (a sphere, a fan, a vortex, a blast)
 //! adds its velocity to the field where it is, from the next fixed step on; everything that
 //! samples the field feels it (falling objects, cloth, plates, avian bodies), and a strong enough
-//! gust lifts a resting leaf again ([`LIFT_OFF_FACTOR`](freefall::LIFT_OFF_FACTOR)). A
+//! gust lifts a resting leaf again ([`FallRelease::LIFT_OFF_FACTOR`](crate::freefall::FallRelease::LIFT_OFF_FACTOR)). A
 //! [`WindShelter`](wind::WindShelter) calms the lee of a wall or the inside of a room;
 //! [`WindField::ease_to`](wind::WindField::ease_to) builds a storm up or veers the wind without a
 //! jump; [`WindConfig::beaufort`](wind::WindConfig::beaufort) gives the wind of a Beaufort force.
@@ -106,10 +106,12 @@
 //!
 //! # Scheduling and smooth motion
 //!
-//! The simulation runs in [`FixedUpdate`] (or the schedule given to [`WindfallPlugins::new`]),
-//! in public sets you can order your own systems against ([`WindfallSystems`]):
+//! The simulation runs in [`FixedUpdate`](bevy::app::FixedUpdate), or in the schedule given to
+//! [`WindfallPlugins::new`] (each single plugin takes one too, as avian's do: `new(schedule)`,
+//! or `WindPlugin::new(config).in_schedule(schedule)`), in
+//! public sets you can order your own systems against ([`WindfallSystems`], in [`schedule`]):
 //! `Prepare` (before the fixed loop: live settings are taken in), `Wind` (the wind clock),
-//! `Simulate` (everything the wind moves) and `WriteBack` (in [`PostUpdate`], before transform
+//! `Simulate` (everything the wind moves) and `WriteBack` (in [`PostUpdate`](bevy::app::PostUpdate), before transform
 //! propagation: new objects are released, bodies posed, meshes written). Bodies moved on the
 //! fixed step are posed between their last two steps by the frame's overstep, as avian
 //! interpolates, so motion is smooth at any frame rate; the pose lags the simulation by up to
@@ -147,8 +149,8 @@
 //! [`SpectrumError`](spectrum::SpectrumError). Validation checks what is used (the log ratio
 //! ln(h/z0), the unit direction, the node mass), not only the raw fields, and every allocation
 //! sized by user input has a documented budget checked before allocating
-//! ([`spectrum::MAX_NODES`], [`cloth::MAX_NOISE_CELLS`], [`cloth::MAX_CLOTH_NODES`],
-//! [`freefall::ode::MAX_TRAJECTORY_STEPS`]). A bad component, or a transform that is not finite
+//! ([`Synthesizer::MAX_NODES`](crate::spectrum::Synthesizer::MAX_NODES), [`ClothSim::MAX_NOISE_CELLS`](crate::cloth::ClothSim::MAX_NOISE_CELLS), [`ClothGrid::MAX_NODES`](crate::cloth::ClothGrid::MAX_NODES),
+//! [`TanabeKaneko::MAX_TRAJECTORY_STEPS`](crate::freefall::ode::TanabeKaneko::MAX_TRAJECTORY_STEPS)). A bad component, or a transform that is not finite
 //! or lies beyond ±[`MAX_COORDINATE`], gets an `…Invalid` component holding its error
 //! ([`FallingObjectInvalid`](freefall::FallingObjectInvalid),
 //! [`AeroBodyInvalid`](aero::AeroBodyInvalid), [`ClothInvalid`](cloth::ClothInvalid),
@@ -185,6 +187,15 @@
 //! | `avian` | `AvianAero` and `AvianAeroPlugin` for avian3d 0.7 |
 //! | `render` | `gpu::WindGpuPlugin`: the wind on the GPU, the WGSL module `bevy_windfall::wind`, the `WindSway` material |
 //! | `example_scenes` | what the windowed examples need (renderer, window, UI) |
+//!
+//! # How the crate is laid out
+//!
+//! In layers, each using only those below it: [`InvalidValue`], the guards and [`schedule`] at
+//! the bottom; [`spectrum`]; [`wind`]; [`lod`]; [`freefall`] and [`cloth`]; [`aero`]; `gpu` and
+//! `inspector`; the plugin group; and this facade, which nothing imports. Each domain keeps its
+//! components, its models (free of the ECS, usable on their own) and its plugin in files of their
+//! own; limits are associated with the types they bound. `docs/architecture.md` in the
+//! repository has the map and where a new kind of object or wind source goes.
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 /// The README's code blocks, compiled and run as doctests.
@@ -192,215 +203,50 @@
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
 
-use bevy::app::{
-    App, FixedPostUpdate, FixedPreUpdate, FixedUpdate, Plugin, PluginGroup, PluginGroupBuilder,
-    PostUpdate, RunFixedMainLoop, RunFixedMainLoopSystems,
-};
-use bevy::ecs::reflect::ReflectResource;
-use bevy::ecs::resource::Resource;
-use bevy::ecs::schedule::{InternedScheduleLabel, IntoScheduleConfigs, ScheduleLabel, SystemSet};
-use bevy::reflect::std_traits::ReflectDefault;
-
 pub mod aero;
 pub mod cloth;
+mod error;
 pub mod freefall;
 #[cfg(feature = "render")]
 pub mod gpu;
 mod guard;
 #[cfg(feature = "egui")]
 pub mod inspector;
+mod lifecycle;
 pub mod lod;
+mod plugins;
+pub mod schedule;
 pub mod spectrum;
 pub mod wind;
 
+pub use error::InvalidValue;
 pub use guard::MAX_COORDINATE;
+#[cfg(feature = "gizmos")]
+pub use plugins::WindfallDebugPlugin;
+pub use plugins::WindfallPlugins;
+pub use schedule::{WindfallSchedule, WindfallSystems};
 
-/// The most used types.
+/// What a game spawns and configures: the plugins, the components, the wind and its settings.
+/// The papers' machinery (trajectory databases, the Tanabe–Kaneko model, descriptors, spectra)
+/// stays in its module.
 pub mod prelude {
     #[cfg(feature = "gizmos")]
     pub use crate::WindfallDebugPlugin;
-    pub use crate::aero::{AeroBody, AeroCoefficients, AeroPlugin, AeroState, RigidPlate};
+    pub use crate::aero::{
+        AeroBody, AeroCoefficients, AeroPlugin, AeroState, PhysicalCloth, RigidPlate,
+    };
     pub use crate::cloth::{
         Cloth, ClothAttachment, ClothGrid, ClothParams, ClothPlugin, ClothPreset, ClothState,
     };
     pub use crate::freefall::{
-        FallState, FallingObject, Fluid, FreeFallPlugin, FreeFallSettings, Landed, PrimitiveMotion,
-        Shape,
+        FallPreset, FallState, FallingObject, Fluid, FreeFallPlugin, FreeFallSettings, Landed,
+        LeafCloud, LeafCloudPlugin, PrimitiveMotion, Shape,
     };
     pub use crate::lod::{LodFocus, LodView};
     pub use crate::spectrum::fbm;
     pub use crate::wind::{
         SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin, WindSettings,
+        WindShelter, WindSource,
     };
     pub use crate::{WindfallPlugins, WindfallSchedule, WindfallSystems};
-}
-
-/// All of bevy_windfall's plugins, simulating in [`FixedUpdate`]. Add the group, a single
-/// plugin, or disable one: `WindfallPlugins.build().disable::<WindPlugin>()`; simulate in another
-/// schedule with [`WindfallPlugins::new`].
-///
-/// [`WindPlugin`]: wind::WindPlugin
-pub struct WindfallPlugins;
-
-impl WindfallPlugins {
-    /// All the plugins, simulating (the [`WindfallSystems::Wind`] and
-    /// [`WindfallSystems::Simulate`] sets) in `schedule` instead of [`FixedUpdate`], as
-    /// avian's `PhysicsPlugins::new(schedule)` does. In a schedule other than the fixed ones the
-    /// step is the frame's and poses are not interpolated.
-    // `WindfallPlugins` stays a unit struct (`add_plugins(WindfallPlugins)`), so the
-    // schedule-carrying group is a type of its own.
-    #[allow(clippy::new_ret_no_self)]
-    pub fn new(schedule: impl ScheduleLabel) -> WindfallPluginsIn {
-        WindfallPluginsIn {
-            schedule: schedule.intern(),
-        }
-    }
-}
-
-impl PluginGroup for WindfallPlugins {
-    fn build(self) -> PluginGroupBuilder {
-        WindfallPlugins::new(FixedUpdate).build()
-    }
-}
-
-/// Debug drawing (feature `gizmos`), added by you, like avian's `PhysicsDebugPlugin`: wind
-/// arrows ([`wind::WindGizmos`]), fall trails ([`freefall::FallGizmos`]) and cloth yarns
-/// ([`cloth::ClothGizmos`]), each a gizmo config group, all off until enabled in the
-/// `GizmoConfigStore`. Needs Bevy's gizmo plugin (in `DefaultPlugins`).
-#[cfg(feature = "gizmos")]
-pub struct WindfallDebugPlugin;
-
-#[cfg(feature = "gizmos")]
-impl Plugin for WindfallDebugPlugin {
-    fn build(&self, app: &mut App) {
-        app.add_plugins((
-            wind::WindGizmosPlugin,
-            freefall::FallGizmosPlugin,
-            cloth::ClothGizmosPlugin,
-        ));
-    }
-}
-
-/// [`WindfallPlugins`] in a chosen schedule (see [`WindfallPlugins::new`]).
-pub struct WindfallPluginsIn {
-    schedule: InternedScheduleLabel,
-}
-
-impl PluginGroup for WindfallPluginsIn {
-    fn build(self) -> PluginGroupBuilder {
-        PluginGroupBuilder::start::<Self>()
-            .add(WindfallSchedulePlugin(self.schedule))
-            .add(wind::WindPlugin::default())
-            .add(freefall::FreeFallPlugin)
-            .add(freefall::LeafCloudPlugin)
-            .add(aero::AeroPlugin)
-            .add(cloth::ClothPlugin)
-    }
-}
-
-/// Where the simulation runs (a resource; [`FixedUpdate`] when absent). Inserted by
-/// [`WindfallPlugins::new`]; insert it yourself before adding single plugins to move them.
-///
-/// # Example
-///
-/// ```
-/// use bevy::ecs::schedule::ScheduleLabel;
-/// use bevy::prelude::*;
-/// use bevy_windfall::prelude::*;
-///
-/// // Only the wind, stepped once per frame in `Update`.
-/// App::new()
-///     .insert_resource(WindfallSchedule(Update.intern()))
-///     .add_plugins((MinimalPlugins, WindPlugin::default()));
-/// ```
-#[derive(Resource, Clone, Copy, Debug, PartialEq, Eq, bevy::reflect::Reflect)]
-#[reflect(opaque, Resource, Default, Debug)]
-pub struct WindfallSchedule(pub InternedScheduleLabel);
-
-impl Default for WindfallSchedule {
-    fn default() -> Self {
-        Self(FixedUpdate.intern())
-    }
-}
-
-impl WindfallSchedule {
-    /// Whether the schedule runs on the fixed timestep, so poses between steps are
-    /// interpolated.
-    pub fn is_fixed(&self) -> bool {
-        [
-            FixedPreUpdate.intern(),
-            FixedUpdate.intern(),
-            FixedPostUpdate.intern(),
-        ]
-        .contains(&self.0)
-    }
-}
-
-/// Inserts a [`WindfallSchedule`].
-struct WindfallSchedulePlugin(InternedScheduleLabel);
-
-impl Plugin for WindfallSchedulePlugin {
-    fn build(&self, app: &mut App) {
-        app.register_type::<WindfallSchedule>()
-            .insert_resource(WindfallSchedule(self.0));
-    }
-}
-
-/// The crate's system sets, public ordering points for your own systems.
-///
-/// | set | schedule | what |
-/// |---|---|---|
-/// | `Prepare` | `RunFixedMainLoop`, before the fixed loop | live wind settings are taken in |
-/// | `Wind` | the simulation schedule ([`FixedUpdate`]) | a rebuilt field lands; the wind clock advances |
-/// | `Simulate` | the simulation schedule, after `Wind` | falling objects, cloth, aero bodies move |
-/// | `WriteBack` | [`PostUpdate`], before transform propagation | objects are released and posed, meshes written |
-#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum WindfallSystems {
-    /// Before the fixed loop: what the frame changed is taken in.
-    Prepare,
-    /// Advance the wind clock.
-    Wind,
-    /// Move the objects the wind acts on.
-    Simulate,
-    /// After the simulation, before transform propagation: poses and meshes.
-    WriteBack,
-}
-
-/// The schedule the simulation runs in.
-pub(crate) fn simulation_schedule(app: &App) -> InternedScheduleLabel {
-    app.world()
-        .get_resource::<WindfallSchedule>()
-        .copied()
-        .unwrap_or_default()
-        .0
-}
-
-/// Orders the sets; idempotent, so every plugin may call it.
-fn configure_sets(app: &mut App) {
-    let schedule = simulation_schedule(app);
-    app.init_resource::<WindfallSchedule>()
-        .configure_sets(
-            schedule,
-            (WindfallSystems::Wind, WindfallSystems::Simulate).chain(),
-        )
-        .configure_sets(
-            RunFixedMainLoop,
-            WindfallSystems::Prepare.in_set(RunFixedMainLoopSystems::BeforeFixedMainLoop),
-        )
-        .configure_sets(
-            PostUpdate,
-            WindfallSystems::WriteBack.before(bevy::transform::TransformSystems::Propagate),
-        );
-}
-
-/// How far the frame is into the next fixed step (0 to 1), or 1 if the simulation does not run
-/// on the fixed timestep: where to pose bodies between their last two steps.
-pub(crate) fn overstep(
-    schedule: Option<&WindfallSchedule>,
-    time: Option<&bevy::time::Time<bevy::time::Fixed>>,
-) -> f32 {
-    match (schedule.copied().unwrap_or_default().is_fixed(), time) {
-        (true, Some(time)) => time.overstep_fraction(),
-        _ => 1.0,
-    }
 }

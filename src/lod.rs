@@ -21,6 +21,7 @@
 //! entity gets a [`LodInvalid`] naming the field (logged once with `warn!`) until they are
 //! fixed or removed.
 
+use crate::error::InvalidValue;
 use std::f32::consts::PI;
 
 use bevy::ecs::prelude::*;
@@ -85,41 +86,21 @@ impl LodTiers {
         }
     }
 
-    /// Checks the distances: `near` ≥ 0 and `far` ≥ `near`, neither NaN. On failure, the name
-    /// of the bad field (`near` or `far`), its value and why.
-    pub(crate) fn check(&self) -> Result<(), (&'static str, f32, &'static str)> {
-        if self.near.is_nan() || self.near < 0.0 {
-            return Err(("near", self.near, "must be ≥ 0"));
-        }
-        if self.far.is_nan() || self.far < self.near {
-            return Err(("far", self.far, "must be ≥ near"));
-        }
-        Ok(())
-    }
-}
-
-/// Why an entity's levels of detail are off: its `FallLod` or `ClothLod` failed the check.
-#[derive(Clone, Debug, PartialEq, thiserror::Error, Reflect)]
-#[reflect(Debug)]
-pub enum LodError {
-    /// A distance outside its valid range.
-    #[error("`{field}` = {value}: {reason}")]
-    Invalid {
-        /// The field's name (`near` or `far`).
-        field: &'static str,
-        /// The rejected value.
-        value: f32,
-        /// What it must be.
-        reason: &'static str,
-    },
-}
-
-impl LodError {
-    /// Name of the offending field.
-    pub fn field(&self) -> &'static str {
-        match self {
-            Self::Invalid { field, .. } => field,
-        }
+    /// Checks the distances: `near` ≥ 0 and `far` ≥ `near`, neither NaN; the error names the
+    /// bad field (`near` or `far`).
+    pub(crate) fn check(&self) -> Result<(), InvalidValue> {
+        InvalidValue::check(
+            !(self.near.is_nan() || self.near < 0.0),
+            "near",
+            self.near,
+            "must be ≥ 0",
+        )?;
+        InvalidValue::check(
+            !(self.far.is_nan() || self.far < self.near),
+            "far",
+            self.far,
+            "must be ≥ near",
+        )
     }
 }
 
@@ -135,18 +116,20 @@ impl LodError {
 /// let mut app = App::new();
 /// app.add_plugins((MinimalPlugins, TransformPlugin, AssetPlugin::default()))
 ///     .init_asset::<Mesh>()
-///     .add_plugins(ClothPlugin);
+///     .add_plugins(ClothPlugin::default());
 /// let cloth = app
 ///     .world_mut()
 ///     .spawn((Cloth::default(), ClothLod(LodTiers { near: 30.0, far: 10.0 })))
 ///     .id();
 /// app.update();
 /// let invalid = app.world().get::<LodInvalid>(cloth).unwrap();
-/// assert_eq!(invalid.0.field(), "far");
+/// assert_eq!(invalid.0.field, "far");
 /// ```
 #[derive(Component, Clone, Debug, PartialEq, Reflect)]
 #[reflect(Component, Debug)]
-pub struct LodInvalid(pub LodError);
+pub struct LodInvalid(pub InvalidValue);
+
+crate::lifecycle::invalid_marker!(LodInvalid, InvalidValue);
 
 /// A component that carries [`LodTiers`] (`FallLod`, `ClothLod`).
 pub(crate) trait HasLodTiers: Component {
@@ -171,24 +154,14 @@ pub(crate) fn check_tiers<C: HasLodTiers>(
     marked: Query<(), With<LodInvalid>>,
 ) {
     for (entity, component, invalid) in &changed {
-        match component.tiers().check() {
-            Ok(()) => {
-                if invalid.is_some() {
-                    commands.entity(entity).remove::<LodInvalid>();
-                }
-            }
-            Err((field, value, reason)) => {
-                let error = LodError::Invalid {
-                    field,
-                    value,
-                    reason,
-                };
-                if invalid.is_none_or(|i| i.0 != error) {
-                    bevy::log::warn!("levels of detail of {entity}: {error}; full detail instead");
-                    commands.entity(entity).insert(LodInvalid(error));
-                }
-            }
-        }
+        crate::lifecycle::mark(
+            &mut commands,
+            entity,
+            component.tiers().check(),
+            invalid,
+            "levels of detail of",
+            "full detail instead",
+        );
     }
     for entity in removed.read() {
         if marked.contains(entity)
@@ -368,7 +341,7 @@ mod tests {
             }
             .check()
             .unwrap_err()
-            .0,
+            .field,
             "near"
         );
         assert_eq!(
@@ -378,7 +351,7 @@ mod tests {
             }
             .check()
             .unwrap_err()
-            .0,
+            .field,
             "far"
         );
     }

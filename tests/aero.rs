@@ -19,19 +19,19 @@ fn still(_: Vec3) -> Vec3 {
 fn drag_opposes_and_lift_is_perpendicular_and_zero_at_both_extremes() {
     let v = Vec3::new(0.0, -3.0, 0.0);
     // Flow into the face (θ = 0): drag only, exactly ½ C_D ρ v² A.
-    let f = face_force(v, Vec3::Y, 0.01, 1.2, 1.0, AIR_DENSITY);
-    let expected = 0.5 * 1.2 * AIR_DENSITY * 9.0 * 0.01;
+    let f = face_force(v, Vec3::Y, 0.01, 1.2, 1.0, AeroCoefficients::AIR_DENSITY);
+    let expected = 0.5 * 1.2 * AeroCoefficients::AIR_DENSITY * 9.0 * 0.01;
     assert!((f - Vec3::new(0.0, expected, 0.0)).length() < 1e-6, "{f:?}");
     // Flow along the face: nothing at all.
     assert_eq!(
-        face_force(v, Vec3::X, 0.01, 1.2, 1.0, AIR_DENSITY),
+        face_force(v, Vec3::X, 0.01, 1.2, 1.0, AeroCoefficients::AIR_DENSITY),
         Vec3::ZERO
     );
     // Either side of the face is the same face.
     let n = Vec3::new(0.3, 1.0, -0.2);
     assert_eq!(
-        face_force(v, n, 0.01, 1.2, 1.0, AIR_DENSITY),
-        face_force(v, -n, 0.01, 1.2, 1.0, AIR_DENSITY)
+        face_force(v, n, 0.01, 1.2, 1.0, AeroCoefficients::AIR_DENSITY),
+        face_force(v, -n, 0.01, 1.2, 1.0, AeroCoefficients::AIR_DENSITY)
     );
     // Lift peaks at 45° and vanishes at 0° and 90°.
     let lift_at = |deg: f32| {
@@ -55,13 +55,20 @@ fn degenerate_faces_give_zero_not_nan() {
         (v, Vec3::Y, f32::NAN),
     ] {
         assert_eq!(
-            face_force(v, n, a, 1.2, 1.0, AIR_DENSITY),
+            face_force(v, n, a, 1.2, 1.0, AeroCoefficients::AIR_DENSITY),
             Vec3::ZERO,
             "{v:?} {n:?} {a}"
         );
     }
     // A force beyond f32's range is clamped, not dropped: it still opposes the motion.
-    let huge = face_force(Vec3::splat(1e30), Vec3::Y, 1e30, 1.2, 1.0, AIR_DENSITY);
+    let huge = face_force(
+        Vec3::splat(1e30),
+        Vec3::Y,
+        1e30,
+        1.2,
+        1.0,
+        AeroCoefficients::AIR_DENSITY,
+    );
     assert!(huge.is_finite() && huge.dot(Vec3::ONE) < 0.0, "{huge}");
 }
 
@@ -78,10 +85,10 @@ proptest! {
         cl in 0.0f32..3.0,
     ) {
         let (v, n) = (Vec3::from_array(v), Vec3::from_array(n));
-        let total = face_force(v, n, area, cd, cl, AIR_DENSITY);
+        let total = face_force(v, n, area, cd, cl, AeroCoefficients::AIR_DENSITY);
         prop_assert!(total.is_finite());
-        let drag = face_force(v, n, area, cd, 0.0, AIR_DENSITY);
-        let lift = face_force(v, n, area, 0.0, cl, AIR_DENSITY);
+        let drag = face_force(v, n, area, cd, 0.0, AeroCoefficients::AIR_DENSITY);
+        let lift = face_force(v, n, area, 0.0, cl, AeroCoefficients::AIR_DENSITY);
         prop_assert!(drag.dot(v) <= 1e-6 * drag.length() * v.length() + 1e-9);
         prop_assert!(lift.dot(v).abs() <= 1e-4 * lift.length() * v.length() + 1e-9);
         prop_assert!(total.dot(v) <= 1e-4 * total.length() * v.length() + 1e-9);
@@ -309,9 +316,10 @@ fn body_app(wind: Option<WindConfig>) -> (App, Entity) {
     if let Some(config) = wind {
         app.add_plugins(WindPlugin {
             config: Some(config),
+            ..default()
         });
     }
-    app.add_plugins(AeroPlugin);
+    app.add_plugins(AeroPlugin::default());
     let body = app
         .world_mut()
         .spawn((AeroBody::new(card()), Transform::from_xyz(0.0, 20.0, 0.0)))

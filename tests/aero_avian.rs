@@ -21,6 +21,7 @@ fn avian_app(wind: Option<WindConfig>, mass: f32) -> (App, Entity) {
     if let Some(config) = wind {
         app.add_plugins(WindPlugin {
             config: Some(config),
+            ..default()
         });
     }
     let mesh = Mesh::from(Plane3d::default().mesh().size(0.1, 0.1));

@@ -32,7 +32,7 @@ fn small_flag() -> Cloth {
             columns: 12,
             ..default()
         },
-        params: ClothPreset::FlagGentleFrozen.params(),
+        params: ClothPreset::FlagFlappingFrozen.params(),
         ..default()
     }
 }
@@ -396,6 +396,107 @@ fn the_simulation_schedule_can_be_chosen() {
     );
     // It moves down in every frame, not only on fixed steps.
     assert!(heights.windows(2).all(|w| w[1] < w[0]), "{heights:?}");
+}
+
+/// Single plugins take their schedule from their constructors, as avian's do: added in any
+/// order, with no resource inserted first, the wind and a fall both run once per frame in
+/// `Update` (before, a plugin added without the resource stayed in `FixedUpdate` silently).
+#[test]
+fn single_plugins_take_their_schedule_in_any_order() {
+    use bevy::ecs::schedule::ScheduleLabel;
+    // The group's constructor returns the group itself.
+    let _: WindfallPlugins = WindfallPlugins::new(Update);
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        TransformPlugin,
+        FreeFallPlugin::new(Update),
+        WindPlugin::default().in_schedule(Update),
+    ))
+    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
+        40,
+    )));
+    ready(&mut app);
+    assert_eq!(
+        app.world().resource::<WindfallSchedule>().0,
+        Update.intern(),
+        "the first plugin records its schedule"
+    );
+    let leaf = app
+        .world_mut()
+        .spawn((
+            FallPreset::PaperSheet.object(),
+            Transform::from_xyz(0.0, 10.0, 0.0),
+        ))
+        .id();
+    let t0 = app.world().resource::<WindField>().time();
+    let mut heights = Vec::new();
+    for _ in 0..10 {
+        app.update();
+        heights.push(app.world().get::<Transform>(leaf).unwrap().translation.y);
+    }
+    // Ten frames of 40 ms: the clock ran exactly 0.4 s (in `FixedUpdate` at 64 Hz it would have
+    // run 25 whole steps, 0.390625 s), and the sheet moved down in every frame.
+    let clock = app.world().resource::<WindField>().time() - t0;
+    assert!((clock - 0.4).abs() < 1e-4, "wind clock ran {clock} s");
+    assert!(heights.windows(2).all(|w| w[1] < w[0]), "{heights:?}");
+}
+
+/// A plugin left at its default schedule follows its group: `WindfallPlugins::new(Update)` with
+/// its own `WindPlugin` runs the wind clock once per frame too.
+#[test]
+fn a_default_plugin_follows_its_group() {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        TransformPlugin,
+        WindfallPlugins::new(Update).set(WindPlugin::new(WindConfig {
+            grid: [16, 16],
+            ..default()
+        })),
+    ))
+    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
+        40,
+    )));
+    ready(&mut app);
+    let t0 = app.world().resource::<WindField>().time();
+    for _ in 0..10 {
+        app.update();
+    }
+    let clock = app.world().resource::<WindField>().time() - t0;
+    assert!((clock - 0.4).abs() < 1e-4, "wind clock ran {clock} s");
+}
+
+/// Removing a component and inserting the same description again sets it up again: a sheet
+/// taken off and put back falls.
+#[test]
+fn a_removed_and_reinserted_object_falls_again() {
+    let mut app = full_app();
+    let sheet = FallPreset::PaperSheet.object();
+    let leaf = app
+        .world_mut()
+        .spawn((sheet.clone(), Transform::from_xyz(0.0, 10.0, 0.0)))
+        .id();
+    app.update();
+    app.world_mut().entity_mut(leaf).remove::<FallingObject>();
+    app.update();
+    // Put back 5 m up: released again from there (before, the memo of the first release
+    // outlived the component, and the old fall, let go at 10 m, went on).
+    app.world_mut()
+        .entity_mut(leaf)
+        .insert((sheet, Transform::from_xyz(3.0, 5.0, 0.0)));
+    app.update();
+    let state = app.world().get::<FallState>(leaf).expect("a state");
+    let path = state.path().expect("a fall");
+    assert!(
+        path.position().distance(Vec3::new(3.0, 5.0, 0.0)) < 0.5,
+        "{}",
+        path.position()
+    );
+    for _ in 0..20 {
+        app.update();
+    }
+    assert!(app.world().get::<Transform>(leaf).unwrap().translation.y < 5.0);
 }
 
 /// Systems with nothing to do do not run (each would cost a thread wake-up a frame), yet

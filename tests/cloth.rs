@@ -17,7 +17,7 @@ fn sim(grid: ClothGrid, params: ClothParams) -> ClothSim {
 #[test]
 fn filtered_yarns_keep_their_length() {
     let segments = 40;
-    let noise = NoiseSheet::new(1, 16, 64, 2.5, 4).unwrap();
+    let noise = bevy_windfall::spectrum::fbm(&[16, 64], 2.5, 4);
     for filter in [
         HarmonicFilter::All,
         HarmonicFilter::LowPass { max: 2 },
@@ -26,13 +26,11 @@ fn filtered_yarns_keep_their_length() {
     ] {
         let mut descriptor = DescriptorFilter::new(segments, filter);
         for row in 0..16 {
-            let angles: Vec<f32> = (0..segments)
-                .map(|j| PI * noise.sample(0.0, row as f64, j as f64))
-                .collect();
+            let angles: Vec<f32> = (0..segments).map(|j| PI * noise[row * 64 + j]).collect();
             let mut directions = vec![Vec2::ZERO; segments];
             descriptor.directions(&angles, &mut directions);
             let mut points = vec![Vec2::ZERO; segments + 1];
-            trace_yarn(Vec2::ZERO, &directions, 0.05, &mut points);
+            DescriptorFilter::trace_yarn(Vec2::ZERO, &directions, 0.05, &mut points);
             let length: f32 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
             let expected = segments as f32 * 0.05;
             assert!(
@@ -42,7 +40,7 @@ fn filtered_yarns_keep_their_length() {
         }
     }
     // The public contract.
-    let points = yarn_from_angles(&[0.3, -1.0, 2.0, 0.0], 0.5);
+    let points = DescriptorFilter::yarn_from_angles(&[0.3, -1.0, 2.0, 0.0], 0.5);
     assert_eq!(points.len(), 5);
     let length: f32 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
     assert!((length - 2.0).abs() < 1e-5);
@@ -91,24 +89,6 @@ fn neighbouring_yarns_never_exceed_l_eq_7() {
 }
 
 #[test]
-fn constraint_allows_folds_and_leaves_the_leading_yarn_alone() {
-    // A yarn closer than L to its neighbour is not pushed apart.
-    let mut p = vec![
-        Vec3::new(0.0, 0.0, 0.0),
-        Vec3::new(1.0, 0.0, 0.0),
-        Vec3::new(0.0, -1.0, 0.0),
-        Vec3::new(1.0, -0.2, 0.0), // 0.2 from the leading yarn: a fold
-        Vec3::new(0.0, -2.0, 0.0),
-        Vec3::new(1.0, -3.0, 0.0), // 2.8 from its neighbour: pulled to 1
-    ];
-    let before = p.clone();
-    align_to_leading_yarn(&mut p, 3, 2, 0, 1.0);
-    assert_eq!(&p[..4], &before[..4]);
-    assert!((p[5].distance(p[3]) - 1.0).abs() < 1e-6);
-    assert_eq!(p[4], before[4], "the pole column is fixed");
-}
-
-#[test]
 fn pole_edge_is_where_eq_8_puts_it() {
     let grid = ClothGrid {
         rows: 9,
@@ -117,11 +97,11 @@ fn pole_edge_is_where_eq_8_puts_it() {
     let params = ClothParams {
         bow: 0.2,
         lean: 0.05,
-        ..ClothPreset::BannerGentleFrozen.params()
+        ..ClothPreset::BannerFlappingFrozen.params()
     };
     let mut s = sim(grid, params);
     // At the reference speed the arcs have their full size: W1 and W2 of the edge's length.
-    let steps = steps_for_speed(params.reference_speed, grid.width);
+    let steps = ClothSim::steps_for_speed(params.reference_speed, grid.width);
     for _ in 0..10 {
         s.advance(0.1, steps);
         s.rebuild();
@@ -148,7 +128,7 @@ fn pole_edge_is_where_eq_8_puts_it() {
 
 fn cloth_app(wind: Option<WindConfig>, cloth: Cloth) -> (App, Entity) {
     let mut app = headless_app();
-    app.add_plugins(ClothPlugin);
+    app.add_plugins(ClothPlugin::default());
     if let Some(config) = wind {
         app.add_plugins(bevy_windfall::wind::WindPlugin::new(config));
     }
@@ -195,7 +175,7 @@ fn positions_after(seed: u64, steps: usize) -> Vec<u32> {
     let cloth = Cloth {
         params: ClothParams {
             seed,
-            ..ClothPreset::CurtainModerateNonFrozen.params()
+            ..ClothPreset::CurtainFlutteringEvolving.params()
         },
         ..default()
     };
@@ -228,7 +208,7 @@ fn same_seed_same_cloth_bit_for_bit() {
 #[test]
 fn mesh_is_double_sided_and_rewritten_in_place() {
     let mut app = headless_app_with_meshes();
-    app.add_plugins(ClothPlugin);
+    app.add_plugins(ClothPlugin::default());
     let grid = ClothGrid {
         rows: 5,
         columns: 7,
@@ -335,7 +315,7 @@ fn bad_configuration_names_its_field() {
             "params.model.frames",
             grid,
             ClothParams {
-                model: ClothWindModel::NonFrozen { frames: 1 },
+                model: ClothWindModel::Evolving { frames: 1 },
                 ..params
             },
         ),
@@ -343,7 +323,7 @@ fn bad_configuration_names_its_field() {
             "params.model.frames",
             grid,
             ClothParams {
-                model: ClothWindModel::NonFrozen { frames: 1 << 40 },
+                model: ClothWindModel::Evolving { frames: 1 << 40 },
                 ..params
             },
         ),
@@ -399,7 +379,7 @@ proptest! {
         let grid = ClothGrid { rows, columns, width: 1.0, height: 0.6 };
         let params = ClothParams {
             amplitude, beta, wind_speed, swirl, twist, seed,
-            model: if non_frozen { ClothWindModel::NonFrozen { frames: 4 } } else { ClothWindModel::Frozen },
+            model: if non_frozen { ClothWindModel::Evolving { frames: 4 } } else { ClothWindModel::Frozen },
             ..ClothParams::default()
         };
         let attachment = if rod { ClothAttachment::Rod } else { ClothAttachment::Pole };
@@ -410,7 +390,7 @@ proptest! {
             prop_assert!(s.positions().iter().all(|p| p.is_finite()));
             prop_assert!(worst_neighbour_gap(&s) <= grid.row_spacing() * (1.0 + 1e-5) + 1e-6);
         }
-        let mesh = cloth_mesh(rows, columns, s.positions());
+        let mesh = Cloth::mesh(rows, columns, s.positions());
         let Some(VertexAttributeValues::Float32x3(n)) = mesh.attribute(Mesh::ATTRIBUTE_NORMAL) else { panic!() };
         prop_assert!(n.iter().all(|n| Vec3::from(*n).is_finite()));
     }

@@ -21,9 +21,9 @@ fn coarse_grids_keep_the_shape_and_the_pole_edge() {
         height: 1.0,
     };
     for (preset, attachment) in [
-        (ClothPreset::FlagGentleFrozen, ClothAttachment::Pole),
-        (ClothPreset::BannerGentleNonFrozen, ClothAttachment::Pole),
-        (ClothPreset::CurtainGentleFrozen, ClothAttachment::Rod),
+        (ClothPreset::FlagFlappingFrozen, ClothAttachment::Pole),
+        (ClothPreset::BannerFlappingEvolving, ClothAttachment::Pole),
+        (ClothPreset::CurtainDriftingFrozen, ClothAttachment::Rod),
     ] {
         let mut sim = ClothSim::new(grid, preset.params(), attachment).unwrap();
         let speed = preset.params().wind_speed;
@@ -61,7 +61,7 @@ fn coarse_grids_keep_the_shape_and_the_pole_edge() {
 #[test]
 fn a_change_of_tier_cross_fades() {
     let mut app = headless_app_with_meshes();
-    app.add_plugins(ClothPlugin);
+    app.add_plugins(ClothPlugin::default());
     let camera = app
         .world_mut()
         .spawn((LodFocus, Transform::from_xyz(0.0, 6.0, 5.0)))
@@ -75,7 +75,7 @@ fn a_change_of_tier_cross_fades() {
         // Slow waves: what the coarse grid changes moves slowly, so a pop would stand out.
         params: ClothParams {
             wind_speed: 0.3,
-            ..ClothPreset::FlagGentleFrozen.params()
+            ..ClothPreset::FlagFlappingFrozen.params()
         },
         ..default()
     };

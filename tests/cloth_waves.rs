@@ -42,7 +42,7 @@ fn every_flapping_row_bends_in_waves_and_swings_within_bounds() {
     // than swinging as a board (free-edge swing ≤ 45 % of L on average over the seeds; the
     // gentle non-frozen banner swings most, 0.32–0.44 L by seed).
     for preset in ClothPreset::ALL {
-        if preset.object() == "curtain" {
+        if preset.kind() == "curtain" {
             continue;
         }
         let mut swing = 0.0;
@@ -76,7 +76,7 @@ fn waves_travel_toward_the_free_edge_and_grow_there() {
         .map(|&seed| {
             let params = ClothParams {
                 seed,
-                ..ClothPreset::FlagGentleFrozen.params()
+                ..ClothPreset::FlagFlappingFrozen.params()
             };
             let mut sim = ClothSim::new(grid(), params, ClothAttachment::Pole).unwrap();
             (0..500)
@@ -168,13 +168,13 @@ fn non_frozen_wind_changes_as_it_travels_frozen_wind_only_travels() {
     for seed in 1..9 {
         for model in [
             ClothWindModel::Frozen,
-            ClothWindModel::NonFrozen { frames: 64 },
+            ClothWindModel::Evolving { frames: 64 },
         ] {
             let params = ClothParams {
                 model,
                 seed,
                 swirl: 0.0,
-                ..ClothPreset::FlagGentleFrozen.params()
+                ..ClothPreset::FlagFlappingFrozen.params()
             };
             // Two segments per noise cell: the 16-cell shift is 32 segments of 64.
             let fine = ClothGrid {
@@ -209,7 +209,7 @@ fn the_pole_edge_keeps_both_ends_on_the_pole_and_bows_with_the_wind() {
     let g = grid();
     for preset in ClothPreset::ALL {
         let params = preset.params();
-        if preset.object() == "curtain" {
+        if preset.kind() == "curtain" {
             continue;
         }
         let mut sim = ClothSim::new(g, params, ClothAttachment::Pole).unwrap();
@@ -243,13 +243,13 @@ fn the_pole_edge_keeps_both_ends_on_the_pole_and_bows_with_the_wind() {
 
 #[test]
 fn waves_grow_with_the_wind() {
-    let params = ClothPreset::FlagGentleFrozen.params();
+    let params = ClothPreset::FlagFlappingFrozen.params();
     let l = grid().width;
     let at = |speed: f32| {
         flap(
             params,
             ClothAttachment::Pole,
-            steps_for_speed(speed, l),
+            ClothSim::steps_for_speed(speed, l),
             10.0,
         )
     };
@@ -270,12 +270,12 @@ fn waves_grow_with_the_wind() {
 
 #[test]
 fn a_flag_hangs_in_calm_air_and_lifts_smoothly_as_the_wind_rises() {
-    let params = ClothPreset::FlagGentleFrozen.params();
+    let params = ClothPreset::FlagFlappingFrozen.params();
     let g = grid();
     // How far the free edge sits below the pole node of its yarn, over L, averaged.
     let sag = |speed: f32| {
         let mut sim = ClothSim::new(g, params, ClothAttachment::Pole).unwrap();
-        sim.advance(0.02, steps_for_speed(speed, g.width));
+        sim.advance(0.02, ClothSim::steps_for_speed(speed, g.width));
         sim.rebuild();
         let p = sim.positions();
         (0..g.rows)
@@ -294,7 +294,7 @@ fn a_flag_hangs_in_calm_air_and_lifts_smoothly_as_the_wind_rises() {
 
 #[test]
 fn a_curtain_leans_downwind_more_as_the_wind_rises() {
-    let params = ClothPreset::CurtainGentleFrozen.params();
+    let params = ClothPreset::CurtainDriftingFrozen.params();
     let g = ClothGrid {
         rows: 20,
         columns: 30,
@@ -306,7 +306,7 @@ fn a_curtain_leans_downwind_more_as_the_wind_rises() {
         let mut sim = ClothSim::new(g, params, ClothAttachment::Rod).unwrap();
         let mut sum = 0.0;
         for _ in 0..100 {
-            sim.advance(0.02, steps_for_speed(speed, g.width));
+            sim.advance(0.02, ClothSim::steps_for_speed(speed, g.width));
             sim.rebuild();
             let p = sim.positions();
             sum += (0..g.rows)

@@ -9,6 +9,7 @@ use bevy::tasks::{TaskPool, TaskPoolBuilder};
 use bevy_windfall::freefall::cloud::{CloudLeaves, CloudStep, LeafPose};
 use bevy_windfall::freefall::*;
 use bevy_windfall::lod::Focus;
+use bevy_windfall::lod::{LodFocus, LodTiers, LodView};
 use bevy_windfall::wind::{WindConfig, WindField, WindPlugin, WindSource};
 use common::{STEP, headless_app, ready};
 
@@ -22,7 +23,7 @@ fn gale() -> WindField {
     .unwrap()
 }
 
-fn cloud(count: u32, lod: CloudLod) -> LeafCloud {
+fn cloud(count: u32, lod: LodTiers) -> LeafCloud {
     LeafCloud {
         object: FallPreset::MapleLeaf.object(),
         count,
@@ -102,7 +103,7 @@ fn same_bits_on_one_thread_or_four() {
     let model = FallModel::default();
     let description = LeafCloud {
         recycle_after: Some(1.0),
-        ..cloud(3_000, CloudLod::default())
+        ..cloud(3_000, LodTiers::default())
     };
     let mut serial = description.leaves(&model, 0.0).unwrap();
     let mut parallel = serial.clone();
@@ -141,7 +142,7 @@ fn same_bits_on_one_thread_or_four() {
 #[test]
 fn a_cloud_leaf_falls_exactly_as_a_single_path() {
     let model = FallModel::default();
-    let mut leaves = cloud(700, CloudLod::FULL).leaves(&model, 0.0).unwrap();
+    let mut leaves = cloud(700, LodTiers::FULL).leaves(&model, 0.0).unwrap();
     let mut singles: Vec<FallPath> = leaves.paths().cloned().collect();
     let mut wind = gale();
     for _ in 0..300 {
@@ -168,7 +169,7 @@ fn distant_leaves_follow_the_same_path_in_still_air() {
     let model = FallModel::default();
     let description = cloud(
         400,
-        CloudLod {
+        LodTiers {
             near: 1.0,
             far: 2.0,
         },
@@ -213,7 +214,7 @@ fn changing_tier_never_jumps() {
     // Every leaf within 100 m of the near focus, every one beyond 200 m of the far one.
     let mut leaves = cloud(
         300,
-        CloudLod {
+        LodTiers {
             near: 100.0,
             far: 200.0,
         },
@@ -295,9 +296,12 @@ fn changing_tier_never_jumps() {
 
 fn cloud_app(description: LeafCloud, wind: Option<WindConfig>) -> (App, Entity) {
     let mut app = headless_app();
-    app.add_plugins(WindPlugin { config: wind })
-        .add_plugins((FreeFallPlugin, LeafCloudPlugin))
-        .insert_resource(FreeFallSettings { ground_height: 0.0 });
+    app.add_plugins(WindPlugin {
+        config: wind,
+        ..default()
+    })
+    .add_plugins((FreeFallPlugin::default(), LeafCloudPlugin::default()))
+    .insert_resource(FreeFallSettings { ground_height: 0.0 });
     let entity = app.world_mut().spawn(description).id();
     ready(&mut app);
     (app, entity)
@@ -309,7 +313,7 @@ fn cloud_app(description: LeafCloud, wind: Option<WindConfig>) -> (App, Entity) 
 fn a_cloud_behind_the_camera_is_stepped_a_quarter_as_often() {
     let description = cloud(
         400,
-        CloudLod {
+        LodTiers {
             near: 10.0,
             far: 1.0e3,
         },
@@ -342,7 +346,7 @@ fn a_cloud_behind_the_camera_is_stepped_a_quarter_as_often() {
 
 #[test]
 fn landed_leaves_stay_down_until_a_blast_lifts_them() {
-    let mut description = cloud(500, CloudLod::default());
+    let mut description = cloud(500, LodTiers::default());
     description.region.max.y = 2.0;
     let calm = WindConfig {
         reference_speed: 0.5,
@@ -408,7 +412,7 @@ fn invalid_clouds_name_the_field() {
         (
             "lod.near",
             LeafCloud {
-                lod: CloudLod {
+                lod: LodTiers {
                     near: f32::NAN,
                     far: 1.0,
                 },
@@ -418,7 +422,7 @@ fn invalid_clouds_name_the_field() {
         (
             "lod.far",
             LeafCloud {
-                lod: CloudLod {
+                lod: LodTiers {
                     near: 5.0,
                     far: 1.0,
                 },
@@ -477,7 +481,7 @@ fn invalid_clouds_name_the_field() {
 #[test]
 fn a_nan_focus_or_a_huge_step_never_gives_nan() {
     let model = FallModel::default();
-    let mut leaves = cloud(200, CloudLod::default()).leaves(&model, 0.0).unwrap();
+    let mut leaves = cloud(200, LodTiers::default()).leaves(&model, 0.0).unwrap();
     let mut wind = gale();
     for (focus, dt) in [
         (Some(Vec3::NAN), DT),
@@ -515,7 +519,7 @@ fn hostile_clouds_are_refused_by_name_or_stay_finite() {
     ];
     for (field, edit) in edits {
         for value in HOSTILE {
-            let mut description = cloud(40, CloudLod::default());
+            let mut description = cloud(40, LodTiers::default());
             edit(&mut description, value);
             // An edit of one corner may put the other out of order: either may be named.
             let fields: &[&str] = match field {

@@ -246,7 +246,7 @@ fn flutter_frequency_follows_the_strouhal_number() {
     // Two reversals of the sideways velocity per period.
     let f = crossings / 2.0 / seconds;
     let r = coin().regime().unwrap();
-    let expected = STROUHAL * r.descent_speed / 0.02;
+    let expected = FallScales::STROUHAL * r.descent_speed / 0.02;
     assert!((f / expected - 1.0).abs() < 0.05, "{f} Hz vs {expected} Hz");
 }
 
@@ -263,7 +263,7 @@ fn tumbling_turns_on_and_drifts_to_one_side() {
     }
     let drift = horizontal(path.still_displacement()).length() / -path.still_displacement().y;
     // L per half-turn against a drop of a / (2 St) per swing: tan 18° for a disk.
-    let expected = 2.0 * STROUHAL;
+    let expected = 2.0 * FallScales::STROUHAL;
     assert!(
         (drift / expected - 1.0).abs() < 0.25,
         "tumbling drift per drop {drift}, expected {expected}"
@@ -317,58 +317,6 @@ fn spiral_circles_at_radius_a0_and_helix_draws_an_eight_petal_rose() {
     let min = radius.iter().fold(f32::INFINITY, |m, r| m.min(*r));
     assert!((max / helix.amplitude() - 1.0).abs() < 0.05, "{max}");
     assert!(min < 0.05 * helix.amplitude(), "{min}");
-}
-
-#[test]
-fn two_picks_of_the_search_tree_give_different_swings() {
-    let db = TrajectoryDatabase::default();
-    let object = FallingObject::default();
-    let scales = object.scales(&object.regime().unwrap());
-    let mut rng = FallRng::new(1);
-    let choice = SwingChoice {
-        glide: Glide::Right,
-        same_side: false,
-        r: 1.0,
-        theta: 0.0,
-        survival: 1.0,
-    };
-    // What a swing shows: its sideways glide, the plate's turn, and how unevenly it drops.
-    let measure = |segment: u32| {
-        let piece = Piece::swing(&db, &scales, segment, choice);
-        let d = piece.duration();
-        let end = piece.offset(&db, d);
-        let turn = piece.tilt(&db, 0.0).angle_between(piece.tilt(&db, d));
-        let drops: Vec<f32> = (0..8)
-            .map(|i| {
-                let (a, b) = (i as f32 * d / 8.0, (i + 1) as f32 * d / 8.0);
-                piece.offset(&db, a).y - piece.offset(&db, b).y
-            })
-            .collect();
-        let unevenness = drops.iter().fold(0.0f32, |m, x| m.max(*x))
-            / drops.iter().fold(f32::INFINITY, |m, x| m.min(*x));
-        (end.x, turn, unevenness)
-    };
-    // Narrow and wide keys find different clusters: glides differ severalfold.
-    let a0 = scales.amplitude(PrimitiveMotion::Fluttering);
-    let narrow = db.find(&scales.swing_key(0.4 * a0, 1.0), &mut rng);
-    let wide = db.find(&scales.swing_key(10.0 * a0, 1.0), &mut rng);
-    let (a, b) = (measure(narrow), measure(wide));
-    assert!(b.0 > 4.0 * a.0, "glides {} and {}", a.0, b.0);
-    // Within one cluster, members differ in what P¹ − P⁰ does not show: the plate's turn or
-    // the descent's modulation.
-    let cluster = db.nearest_cluster(&scales.swing_key(2.0 * a0, 1.0));
-    let members: Vec<_> = db.members()[cluster].iter().map(|&s| measure(s)).collect();
-    let spread = |f: fn(&(f32, f32, f32)) -> f32| {
-        let lo = members.iter().map(f).fold(f32::INFINITY, f32::min);
-        let hi = members.iter().map(f).fold(0.0f32, f32::max);
-        hi / lo
-    };
-    assert!(
-        spread(|m| m.1) > 1.3 || spread(|m| m.2) > 1.3,
-        "turns ×{} unevenness ×{}",
-        spread(|m| m.1),
-        spread(|m| m.2)
-    );
 }
 
 #[test]
@@ -445,7 +393,7 @@ proptest! {
     ) {
         let chord = 10f32.powf(size);
         let length = chord * (1.0 + 4.0 * aspect);
-        let thickness = (chord * 10f32.powf(thin)).max(MIN_SIZE);
+        let thickness = (chord * 10f32.powf(thin)).max(Shape::MIN_SIZE);
         let fluid = if water { Fluid::WATER } else { Fluid::AIR };
         let density = fluid.density * (1.0 + 10f32.powf(ratio));
         let shape = match shape {
@@ -465,7 +413,7 @@ proptest! {
             Err(e) => {
                 // Only a density past the documented maxima may be refused here.
                 prop_assert_eq!(e.field(), "density");
-                prop_assert!(density > 1.0e7 || density / fluid.density > MAX_DENSITY_RATIO);
+                prop_assert!(density > 1.0e7 || density / fluid.density > Fluid::MAX_DENSITY_RATIO);
                 return Ok(());
             }
         };

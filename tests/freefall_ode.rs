@@ -1,6 +1,6 @@
 //! FallingObject's eq. 4 ODE: stability when stiff and the integrators' accuracy.
 
-use bevy_windfall::freefall::ode::{self, Integrator, OdeState, TanabeKaneko};
+use bevy_windfall::freefall::ode::{Integrator, OdeState, TanabeKaneko};
 use proptest::prelude::*;
 
 #[test]
@@ -18,7 +18,7 @@ fn stiff_ode_stays_finite_and_bounded() {
         ..OdeState::default()
     };
     for _ in 0..100 {
-        s = ode::step(&params, s, 0.25, Integrator::Rk4);
+        s = params.step(s, 0.25, Integrator::Rk4);
         assert!(s.is_finite(), "{s:?}");
     }
     // Terminal speed is about g / A.
@@ -31,7 +31,7 @@ fn stiff_ode_stays_finite_and_bounded() {
             u: 2.0,
             ..OdeState::default()
         },
-        |s, _| ode::single_step(&params, &s, 0.25, Integrator::Rk4),
+        |s, _| params.single_step(&s, 0.25, Integrator::Rk4),
     );
     assert!(
         !raw.is_finite() || raw.speed() > 1e6,
@@ -49,12 +49,14 @@ fn rk4_converges_fastest_on_the_flutter() {
         v: -0.5,
         ..OdeState::default()
     };
-    let reference = *ode::trajectory(&params, start, 1e-4, 1.0, Integrator::Rk4)
+    let reference = *params
+        .trajectory(start, 1e-4, 1.0, Integrator::Rk4)
         .unwrap()
         .last()
         .unwrap();
     let error_of = |dt: f64, method| {
-        let s = *ode::trajectory(&params, start, dt, 1.0, method)
+        let s = *params
+            .trajectory(start, dt, 1.0, method)
             .unwrap()
             .last()
             .unwrap();
@@ -98,7 +100,7 @@ proptest! {
         let mut s = OdeState { theta: 0.4, u: 1.0, v: -1.0, ..OdeState::default() };
         let bound = s.speed().max(9.81 / params.a_par.min(params.a_perp)) * 1.5 + 1e-6;
         for _ in 0..200 {
-            s = ode::step(&params, s, dt, method);
+            s = params.step(s, dt, method);
             prop_assert!(s.is_finite(), "{s:?}");
             prop_assert!(s.speed() <= bound, "speed {} > {bound}", s.speed());
         }

@@ -16,9 +16,10 @@ fn fall_app(
     if let Some(config) = wind {
         app.add_plugins(WindPlugin {
             config: Some(config),
+            ..default()
         });
     }
-    app.add_plugins(FreeFallPlugin)
+    app.add_plugins(FreeFallPlugin::default())
         .insert_resource(FreeFallSettings {
             ground_height: ground,
         });

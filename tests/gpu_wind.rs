@@ -452,23 +452,6 @@ fn the_gpu_samples_the_same_wind_as_the_cpu() {
             ease: None,
         },
     ];
-    // What the CPU spends on uploads (this test's build, not a release benchmark): packing the
-    // nodes of the default 128² plane (once per field) and the parameters (every frame).
-    let field = WindField::new(WindConfig::default()).unwrap();
-    let start = std::time::Instant::now();
-    let bytes = bevy_windfall::gpu::node_bytes(&field);
-    let packing = start.elapsed();
-    let start = std::time::Instant::now();
-    for _ in 0..100 {
-        std::hint::black_box(bevy_windfall::gpu::GpuWindParams::of(&field));
-    }
-    println!(
-        "128² plane: {} B of nodes packed in {:?}; parameters in {:?} a frame",
-        bytes.len(),
-        packing,
-        start.elapsed() / 100
-    );
-    assert_eq!(bytes.len(), 128 * 128 * 12);
     for case in &cases {
         let (worst, tolerance) = run(case);
         println!(
@@ -485,7 +468,7 @@ fn the_gpu_samples_the_same_wind_as_the_cpu() {
 fn cloud_leaves_face_their_normals() {
     use bevy::mesh::{Mesh, VertexAttributeValues};
     use bevy_windfall::freefall::Shape;
-    use bevy_windfall::gpu::{LeafCloudLook, cloud_mesh};
+    use bevy_windfall::gpu::LeafCloudLook;
     for shape in [
         Shape::Ellipse {
             major: 0.1,
@@ -502,7 +485,7 @@ fn cloud_leaves_face_their_normals() {
             thickness: 3e-4,
         },
     ] {
-        let mesh = cloud_mesh(&shape, 3, &LeafCloudLook::default());
+        let mesh = LeafCloudLook::default().mesh(&shape, 3);
         let Some(VertexAttributeValues::Float32x3(positions)) =
             mesh.attribute(Mesh::ATTRIBUTE_POSITION)
         else {

@@ -11,7 +11,7 @@ mod common;
 
 use bevy::prelude::*;
 use bevy_windfall::cloth::{ClothError, ClothSim};
-use bevy_windfall::freefall::ode::{self, Integrator, OdeState, TanabeKaneko};
+use bevy_windfall::freefall::ode::{Integrator, OdeState, TanabeKaneko};
 use bevy_windfall::freefall::{
     DatabaseConfig, FallModel, FallRelease, FreeFallError, MarkovChain, TrajectoryDatabase,
     WindTilt,
@@ -407,13 +407,7 @@ fn spectra_and_the_ode_refuse_by_name_or_stay_finite() {
                 name,
                 value,
                 &["dt", "duration"],
-                ode::trajectory(
-                    &params,
-                    start,
-                    f64::from(dt),
-                    f64::from(duration),
-                    Integrator::Rk4,
-                ),
+                params.trajectory(start, f64::from(dt), f64::from(duration), Integrator::Rk4),
                 |e| e.field(),
                 |run| assert!(run.iter().all(|s| s.x.is_finite() && s.y.is_finite())),
             );

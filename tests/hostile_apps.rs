@@ -12,7 +12,7 @@ use bevy_windfall::aero::{
     PlateState,
 };
 use bevy_windfall::cloth::{ClothInvalid, ClothSim, ClothWindModel};
-use bevy_windfall::freefall::ode::{self, Integrator, OdeState, TanabeKaneko};
+use bevy_windfall::freefall::ode::{Integrator, OdeState, TanabeKaneko};
 use bevy_windfall::freefall::{FallModel, FallRelease, FallingObjectInvalid};
 use bevy_windfall::prelude::*;
 use bevy_windfall::spectrum::try_fbm;
@@ -212,7 +212,7 @@ fn run_probe(name: &str) {
         }
         "cloth frames 2^40" => {
             let params = ClothParams {
-                model: ClothWindModel::NonFrozen { frames: 1 << 40 },
+                model: ClothWindModel::Evolving { frames: 1 << 40 },
                 ..default()
             };
             let e = ClothSim::new(ClothGrid::default(), params, ClothAttachment::Pole);
@@ -232,13 +232,8 @@ fn run_probe(name: &str) {
             assert!(sim.positions().iter().all(|p| p.is_finite()));
         }
         "ode dt 1e-12" => {
-            let run = ode::trajectory(
-                &TanabeKaneko::FLUTTER,
-                OdeState::default(),
-                1e-12,
-                1.0,
-                Integrator::Rk4,
-            );
+            let run =
+                TanabeKaneko::FLUTTER.trajectory(OdeState::default(), 1e-12, 1.0, Integrator::Rk4);
             assert_eq!(run.unwrap_err().field(), "dt");
         }
         "particle cloth iterations usize::MAX" => {

@@ -6,6 +6,7 @@ mod common;
 
 use bevy::prelude::*;
 use bevy_windfall::freefall::*;
+use bevy_windfall::lod::{LodFocus, LodView};
 use bevy_windfall::wind::{WindConfig, WindPlugin};
 use common::{STEP, headless_app, ready};
 
@@ -18,9 +19,10 @@ fn leaves_app(lod: bool, camera: Vec3, wind: Option<WindConfig>) -> (App, Vec<En
     if let Some(config) = wind {
         app.add_plugins(WindPlugin {
             config: Some(config),
+            ..default()
         });
     }
-    app.add_plugins(FreeFallPlugin);
+    app.add_plugins(FreeFallPlugin::default());
     let camera = app
         .world_mut()
         .spawn((LodFocus, Transform::from_translation(camera)))
@@ -250,7 +252,7 @@ fn hostile_tiers_and_focus_give_finite_poses() {
     use bevy_windfall::lod::LodTiers;
     use common::hostile::HOSTILE;
     let mut app = common::headless_app_with_meshes();
-    app.add_plugins((FreeFallPlugin, ClothPlugin));
+    app.add_plugins((FreeFallPlugin::default(), ClothPlugin::default()));
     // A focus that goes NaN and infinite, and tiers of every hostile value on either side.
     let camera = app.world_mut().spawn((LodFocus, Transform::default())).id();
     let mut leaves = Vec::new();
@@ -304,7 +306,7 @@ fn bad_tiers_are_named_and_mean_full_detail_until_fixed() {
     use bevy_windfall::cloth::{Cloth, ClothLod, ClothPlugin};
     use bevy_windfall::lod::{LodInvalid, LodTiers};
     let mut app = common::headless_app_with_meshes();
-    app.add_plugins((FreeFallPlugin, ClothPlugin));
+    app.add_plugins((FreeFallPlugin::default(), ClothPlugin::default()));
     // The camera far away: valid tiers would step every object at tier 4.
     app.world_mut()
         .spawn((LodFocus, Transform::from_xyz(0.0, 2.0, 500.0)));
@@ -373,7 +375,7 @@ fn bad_tiers_are_named_and_mean_full_detail_until_fixed() {
     }
     for (i, &(_, field)) in cases.iter().enumerate() {
         for e in [leaves[i], cloths[i]] {
-            let named = app.world().get::<LodInvalid>(e).map(|l| l.0.field());
+            let named = app.world().get::<LodInvalid>(e).map(|l| l.0.field);
             assert_eq!(named, field, "case {i}");
         }
     }

@@ -1,8 +1,10 @@
 //! The `spectrum` module: slopes, moments, realness, periodicity, sizes, seeds.
 mod common;
 
-use bevy_windfall::spectrum::measure::{fit_slope, line_spectrum, mean_variance};
-use bevy_windfall::spectrum::{SpectrumError, fbm, fbm_pair, try_fbm};
+#[path = "common/measure.rs"]
+mod measure;
+use bevy_windfall::spectrum::{FftBackend, SpectrumError, Synthesizer, fbm, try_fbm};
+use measure::{fit_slope, line_spectrum, mean_variance};
 
 const BETAS: [f32; 4] = [1.0, 5.0 / 3.0, 2.0, 3.0];
 const TOLERANCE: f64 = 0.1;
@@ -90,7 +92,9 @@ fn paired_fields_are_real_and_independent() {
     for beta in BETAS {
         let mut corr = 0.0;
         for seed in 0..4 {
-            let (a, b) = fbm_pair(&dims, beta, seed);
+            let (a, b) = Synthesizer::new(&dims, beta, FftBackend::Portable)
+                .unwrap()
+                .pair(seed);
             let (da, db) = (increments(&a), increments(&b));
             let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
             corr += dot(&da, &db) / (dot(&da, &da) * dot(&db, &db)).sqrt() / 4.0;
@@ -190,8 +194,7 @@ fn bad_input_gives_a_named_error() {
 /// fresh one, for every key it is asked for in turn, more keys than it keeps included.
 #[test]
 fn shared_synthesizers_give_the_same_bits_as_fresh_ones() {
-    use bevy_windfall::spectrum::{CACHED_SYNTHESIZERS, FftBackend, Synthesizer};
-    let keys: Vec<(Vec<usize>, f32)> = (0..CACHED_SYNTHESIZERS + 2)
+    let keys: Vec<(Vec<usize>, f32)> = (0..Synthesizer::CACHED + 2)
         .map(|i| (vec![16 + 2 * i, 12], 1.0 + 0.25 * i as f32))
         .collect();
     for round in 0..2u64 {

@@ -6,13 +6,14 @@
 
 mod common;
 
+use bevy_windfall::freefall::Shape;
 use std::f32::consts::PI;
 
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_windfall::aero::{AeroError, Face, ParticleCloth, Pinning, PlateState, face_force};
 use bevy_windfall::cloth::{ClothSim, ClothWindModel};
-use bevy_windfall::freefall::{FallModel, FallPath, MIN_SIZE, WindTilt};
+use bevy_windfall::freefall::{FallModel, FallPath, WindTilt};
 use bevy_windfall::prelude::*;
 use proptest::prelude::*;
 
@@ -123,7 +124,7 @@ proptest! {
         seed in any::<u64>(),
     ) {
         let chord = 10f32.powf(size);
-        let thickness = (chord * 10f32.powf(thin)).max(MIN_SIZE);
+        let thickness = (chord * 10f32.powf(thin)).max(Shape::MIN_SIZE);
         let fluid = if water { Fluid::WATER } else { Fluid::AIR };
         // From 1 % of the fluid's density (a balloon) to 16 times water's (a gold coin).
         let density = fluid.density * 10f32.powf(ratio).min(16_000.0 / fluid.density);
@@ -232,7 +233,7 @@ proptest! {
         }
         let inertia = Vec3::from_array(inertia);
         match RigidPlate::new(faces, mass, inertia, AeroCoefficients::default()) {
-            Err(AeroError::Invalid { field, value, .. }) => {
+            Err(AeroError::Invalid(bevy_windfall::InvalidValue { field, value, .. })) => {
                 let named = match field {
                     "mass" => mass,
                     "inertia.x" => inertia.x,
@@ -276,7 +277,7 @@ proptest! {
         let grid = ClothGrid { rows, columns, width: 1.5, height: 1.0 };
         let params = ClothParams {
             amplitude, beta, wind_speed, swirl, twist, seed,
-            model: if non_frozen { ClothWindModel::NonFrozen { frames: 4 } } else { ClothWindModel::Frozen },
+            model: if non_frozen { ClothWindModel::Evolving { frames: 4 } } else { ClothWindModel::Frozen },
             ..ClothParams::default()
         };
         let mut sim = match ClothSim::new(grid, params, ClothAttachment::Pole) {

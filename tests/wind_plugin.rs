@@ -157,7 +157,7 @@ fn settings_apply_speed_at_once_and_the_rest_by_a_rebuild_that_keeps_later_edits
         .unwrap();
     // A second turbulence edit while the first builds: the last one wins.
     app.world_mut().resource_mut::<WindSettings>().seed = 77;
-    for _ in 0..2 * bevy_windfall::wind::REBUILD_STEPS {
+    for _ in 0..2 * bevy_windfall::wind::WindRebuild::DEFAULT_STEPS {
         app.update();
     }
     let wind = app.world().resource::<WindField>();
@@ -235,7 +235,7 @@ fn a_field_inserted_during_a_rebuild_wins() {
     })
     .unwrap();
     app.insert_resource(mine);
-    for _ in 0..2 * bevy_windfall::wind::REBUILD_STEPS {
+    for _ in 0..2 * bevy_windfall::wind::WindRebuild::DEFAULT_STEPS {
         app.update();
     }
     assert_eq!(app.world().resource::<WindField>().config().seed, 1234);

@@ -6,6 +6,7 @@ mod common;
 
 use bevy::prelude::*;
 use bevy_windfall::aero::{PhysicalCloth, PhysicalClothState};
+use bevy_windfall::freefall::FallRelease;
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::WindSource;
 use common::{STEP, headless_app, headless_app_with_meshes, ready};
@@ -395,7 +396,7 @@ fn every_consumer_feels_a_source() {
 
 #[test]
 fn a_strong_enough_wind_lifts_resting_objects_again() {
-    use bevy_windfall::freefall::{FallState, LIFT_OFF_FACTOR};
+    use bevy_windfall::freefall::FallState;
     let mut app = headless_app();
     app.add_plugins(WindfallPlugins.set(WindPlugin::new(still())));
     ready(&mut app);
@@ -419,7 +420,7 @@ fn a_strong_enough_wind_lifts_resting_objects_again() {
     // Just below the threshold on the first three leaves, just above on the others (a sphere of
     // 1 m around each: its centre is where the leaf lies).
     for (i, &e) in leaves.iter().enumerate() {
-        let factor = if i < 3 { 0.9 } else { 1.1 } * LIFT_OFF_FACTOR;
+        let factor = if i < 3 { 0.9 } else { 1.1 } * FallRelease::LIFT_OFF_FACTOR;
         let at = app.world().get::<Transform>(e).unwrap().translation;
         app.world_mut().spawn((
             WindSource::sphere(1.0, Vec3::X * factor * u),

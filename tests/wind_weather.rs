@@ -2,7 +2,7 @@
 //! presets.
 
 use bevy::math::{Vec2, Vec3};
-use bevy_windfall::wind::{BEAUFORT_SPEEDS, Pulse, WindConfig, WindField};
+use bevy_windfall::wind::{Pulse, WindConfig, WindField};
 
 fn calm_field(speed: f32) -> WindField {
     WindField::new(WindConfig {
@@ -127,7 +127,7 @@ fn beaufort_presets_blow_within_their_force_at_ten_metres() {
         .unwrap();
         let u = field.mean_speed_at(10.0);
         assert!((low..=high).contains(&u), "force {force}: {u} m/s");
-        assert!((u - BEAUFORT_SPEEDS[force]).abs() < 1e-4);
+        assert!((u - WindConfig::BEAUFORT_SPEEDS[force]).abs() < 1e-4);
     }
     assert_eq!(WindConfig::beaufort(200), WindConfig::beaufort(12));
 }

@@ -2,6 +2,7 @@
 //! physical one; harmonics kept by the descriptor's low-pass filter against shape error and
 //! build time; grid size against run time.
 
+use bevy_windfall::cloth::Cloth;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -9,7 +10,7 @@ use bevy::math::Vec3;
 use bevy_windfall::aero::{AeroCoefficients, ParticleCloth, Pinning};
 use bevy_windfall::cloth::{
     ClothAttachment, ClothGrid, ClothParams, ClothPreset, ClothSim, FlapRecorder, FlapStats,
-    HarmonicFilter, air_speed, cloth_mesh, steps_for_speed, write_cloth_mesh,
+    HarmonicFilter,
 };
 
 use super::plot::{Plot, Series};
@@ -21,12 +22,12 @@ const DT: f32 = 1.0 / 64.0;
 /// Mean seconds per frame (advance, rebuild, mesh write).
 fn seconds_per_frame(sim: &mut ClothSim, repeats: usize) -> f64 {
     let g = *sim.grid();
-    let mut mesh = cloth_mesh(g.rows, g.columns, sim.positions());
+    let mut mesh = Cloth::mesh(g.rows, g.columns, sim.positions());
     let speed = sim.params().wind_speed;
     seconds_per(FRAMES * repeats, || {
         sim.advance(DT, speed);
         sim.rebuild();
-        write_cloth_mesh(&mut mesh, g.rows, g.columns, black_box(sim.positions()));
+        Cloth::write_mesh(&mut mesh, g.rows, g.columns, black_box(sim.positions()));
     })
 }
 
@@ -76,7 +77,7 @@ pub fn report(r: &mut Report) {
         width: 1.5,
         height: 1.0,
     };
-    let base = ClothPreset::FlagGentleFrozen.params();
+    let base = ClothPreset::FlagFlappingFrozen.params();
     let repeats = if r.quick { 1 } else { 4 };
     let mut rows = Vec::new();
     let mut points = Vec::new();
@@ -152,7 +153,7 @@ pub fn report(r: &mut Report) {
             columns: size,
             ..grid
         };
-        let non_frozen = ClothPreset::FlagGentleNonFrozen.params();
+        let non_frozen = ClothPreset::FlagFlappingEvolving.params();
         let mut a = ClothSim::new(grid, base, ClothAttachment::Pole).expect("valid cloth");
         let mut b = ClothSim::new(grid, non_frozen, ClothAttachment::Pole).expect("valid cloth");
         let repeats = if r.quick {
@@ -208,7 +209,7 @@ fn flapping(r: &mut Report) {
     for preset in ClothPreset::ALL {
         let params = preset.params();
         let stats = procedural(grid, params, params.wind_speed, seconds);
-        let u = air_speed(params.wind_speed, grid.width);
+        let u = ClothSim::speed_of_steps(params.wind_speed, grid.width);
         rows.push(vec![
             format!("{preset:?}"),
             preset.observation().into(),
@@ -261,10 +262,10 @@ fn procedural_against_physical(r: &mut Report) {
         width: 1.5,
         height: 1.0,
     };
-    let params = ClothPreset::FlagGentleFrozen.params();
+    let params = ClothPreset::FlagFlappingFrozen.params();
     let mut rows = Vec::new();
     for speed in [5.0f32, 8.0] {
-        let steps = steps_for_speed(speed, grid.width);
+        let steps = ClothSim::steps_for_speed(speed, grid.width);
         for (name, stats) in [
             ("procedural", procedural(grid, params, steps, seconds)),
             ("physical", physical(grid, speed, seconds)),

@@ -71,7 +71,7 @@ pub fn report(r: &mut Report) {
         width: 1.5,
         height: 1.0,
     };
-    let params = ClothPreset::FlagGentleFrozen.params();
+    let params = ClothPreset::FlagFlappingFrozen.params();
     let mut flag = ClothSim::new(grid, params, ClothAttachment::Pole).expect("valid flag");
     let frames = n / 20;
     let procedural = seconds_per(frames, || {

@@ -1,11 +1,12 @@
 //! Free fall: the eq. 4 ODE by four integrators and several steps; the trajectory database;
 //! the paper's Fig. 15 objects from their stated sizes.
 
+use bevy_windfall::freefall::Regime;
 use std::hint::black_box;
 use std::time::Instant;
 
-use bevy_windfall::freefall::ode::{self, Integrator, OdeState, TanabeKaneko};
-use bevy_windfall::freefall::{Fluid, SEGMENT_SAMPLES, Shape, TrajectoryDatabase, regime};
+use bevy_windfall::freefall::ode::{Integrator, OdeState, TanabeKaneko};
+use bevy_windfall::freefall::{Fluid, Shape, TrajectoryDatabase};
 
 use super::plot::{Plot, Series};
 use super::{Report, sci, seconds_per};
@@ -32,7 +33,8 @@ fn error(a: &OdeState, b: &OdeState) -> f64 {
 }
 
 fn end_of(params: &TanabeKaneko, dt: f64, method: Integrator) -> OdeState {
-    *ode::trajectory(params, start(), dt, DURATION, method)
+    *params
+        .trajectory(start(), dt, DURATION, method)
         .expect("a valid step")
         .last()
         .expect("a trajectory")
@@ -66,13 +68,7 @@ pub fn report(r: &mut Report) {
                 (2000.0 * dt).clamp(1.0, 200.0) as usize * 5
             };
             let seconds = seconds_per(repeats, || {
-                let _ = black_box(ode::trajectory(
-                    &params,
-                    black_box(start()),
-                    dt,
-                    DURATION,
-                    method,
-                ));
+                let _ = black_box(params.trajectory(black_box(start()), dt, DURATION, method));
             }) / DURATION;
             points.push((seconds * 1e6, e));
             rows.push(vec![
@@ -109,10 +105,11 @@ pub fn report(r: &mut Report) {
     r.section(
         "Free fall: trajectory database",
         &format!(
-            "{} eq. 5 segments of {SEGMENT_SAMPLES} samples in {} clusters, {:.1} KiB, built in \
+            "{} eq. 5 segments of {} samples in {} clusters, {:.1} KiB, built in \
              {:.1} ms.",
-            db.segments().len(),
-            db.centroids().len(),
+            db.segment_count(),
+            db.tumble_shape().len(),
+            db.cluster_count(),
             db.size_bytes() as f64 / 1024.0,
             build.as_secs_f64() * 1e3
         ),
@@ -157,7 +154,7 @@ pub fn report(r: &mut Report) {
             "Re 1.2e4, I* 6.3e-3, helix",
         ),
     ] {
-        if let Ok(g) = regime(&shape, density, &fluid, 9.81) {
+        if let Ok(g) = Regime::new(&shape, density, &fluid, 9.81) {
             rows.push(vec![
                 name.into(),
                 format!("{density}"),

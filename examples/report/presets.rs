@@ -3,8 +3,9 @@
 //! sequence.
 
 use bevy::math::Vec3;
+use bevy_windfall::freefall::FallScales;
 use bevy_windfall::freefall::{
-    FallModel, FallPreset, FallRelease, FallingObject, PrimitiveMotion, STROUHAL, WindTilt,
+    FallModel, FallPreset, FallRelease, FallingObject, PrimitiveMotion, WindTilt,
 };
 
 use super::{Report, sci};
@@ -29,12 +30,13 @@ fn motions(object: &FallingObject, model: &FallModel, seconds: f32) -> Vec<Primi
 }
 
 pub fn report(r: &mut Report) {
+    let strouhal = FallScales::STROUHAL;
     r.section(
         "Free fall: presets",
         &format!(
             "Every `FallPreset` with its sizes' Re and I*, the main motion it falls toward \
              (forced where the paper reports one its sizes cannot give, see the README), the \
-             descent speed U of eq. 3, the swing frequency f = St U / a with St = {STROUHAL:.3} \
+             descent speed U of eq. 3, the swing frequency f = St U / a with St = {strouhal:.3} \
              (one flutter period is two swings), and the response time τ = ρ_s b / (ρ_f U) over \
              which it takes up a change of the wind."
         ),

@@ -3,7 +3,9 @@
 use std::hint::black_box;
 
 use bevy_windfall::spectrum::fbm;
-use bevy_windfall::spectrum::measure::{fit_slope, line_spectrum};
+#[path = "../../tests/common/measure.rs"]
+mod measure;
+use measure::{fit_slope, line_spectrum};
 use rustfft::{FftPlannerScalar, num_complex::Complex};
 
 use super::plot::{Plot, Series};

@@ -7,7 +7,7 @@ use std::f32::consts::PI;
 use bevy::math::{Quat, Vec3};
 use bevy_windfall::aero::{AeroCoefficients, Face, ParticleCloth, Pinning, PlateState, RigidPlate};
 use bevy_windfall::cloth::{ClothAttachment, ClothGrid, ClothParams, ClothSim};
-use bevy_windfall::freefall::ode::{self, Integrator, OdeState, TanabeKaneko};
+use bevy_windfall::freefall::ode::{Integrator, OdeState, TanabeKaneko};
 use bevy_windfall::freefall::{FallModel, FallPath, FallingObject, Shape, WindTilt};
 use bevy_windfall::wind::{WindConfig, WindField};
 
@@ -90,8 +90,8 @@ fn ode_rows(rows: &mut Vec<Vec<String>>) {
         let mut o = Outcome::new();
         for _ in 0..100 {
             s = match method {
-                Some(m) => ode::step(&stiff, s, 0.25, m),
-                None => ode::single_step(&stiff, &s, 0.25, Integrator::Rk4),
+                Some(m) => stiff.step(s, 0.25, m),
+                None => stiff.single_step(&s, 0.25, Integrator::Rk4),
             };
             o.see(if s.is_finite() { s.speed() } else { f64::NAN });
         }

@@ -26,12 +26,12 @@ impl Fabric {
     /// Table 1 row for this fabric in a gentle breeze.
     pub fn preset(self, non_frozen: bool) -> ClothPreset {
         match (self, non_frozen) {
-            (Self::Flag, false) => ClothPreset::FlagGentleFrozen,
-            (Self::Flag, true) => ClothPreset::FlagGentleNonFrozen,
-            (Self::Banner, false) => ClothPreset::BannerGentleFrozen,
-            (Self::Banner, true) => ClothPreset::BannerGentleNonFrozen,
-            (Self::Curtain, false) => ClothPreset::CurtainGentleFrozen,
-            (Self::Curtain, true) => ClothPreset::CurtainGentleNonFrozen,
+            (Self::Flag, false) => ClothPreset::FlagFlappingFrozen,
+            (Self::Flag, true) => ClothPreset::FlagFlappingEvolving,
+            (Self::Banner, false) => ClothPreset::BannerFlappingFrozen,
+            (Self::Banner, true) => ClothPreset::BannerFlappingEvolving,
+            (Self::Curtain, false) => ClothPreset::CurtainDriftingFrozen,
+            (Self::Curtain, true) => ClothPreset::CurtainDriftingEvolving,
         }
     }
 
@@ -303,7 +303,7 @@ fn keys(
     }
     if keys.just_pressed(KeyCode::KeyF) {
         // The same object and band of Table 1 in the other wind model: the whole row.
-        let non_frozen = !matches!(cloth.params.model, ClothWindModel::NonFrozen { .. });
+        let non_frozen = !matches!(cloth.params.model, ClothWindModel::Evolving { .. });
         let (fresh, _) = cloth_for(*fabric, non_frozen);
         cloth.params = fresh.params;
     }
@@ -358,7 +358,7 @@ fn show_info(
         return;
     };
     let p = &cloth.params;
-    let non_frozen = matches!(p.model, ClothWindModel::NonFrozen { .. });
+    let non_frozen = matches!(p.model, ClothWindModel::Evolving { .. });
     let preset = fabric.preset(non_frozen);
     info.0 = format!(
         "{:?}: Table 1 row \"{}\", {} wind (theta {:.1}, beta {:.2}, swirl |u| {}, band {})\n\

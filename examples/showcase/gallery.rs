@@ -7,7 +7,8 @@
 
 use bevy::prelude::*;
 use bevy_windfall::WindfallSystems;
-use bevy_windfall::freefall::{FallPreset, MarkovChain, PrimitiveMotion, motion_color};
+use bevy_windfall::freefall::FallGizmos;
+use bevy_windfall::freefall::{FallPreset, MarkovChain, PrimitiveMotion};
 use bevy_windfall::prelude::*;
 
 use super::common::leaf::{Outline, leaf_mesh};
@@ -178,7 +179,7 @@ fn setup(
             &mut commands,
             Vec3::new(x, 0.3, 0.8),
             format!("{}\n{}", motion.label(), name(motion)),
-            motion_color(motion),
+            FallGizmos::motion_color(motion),
         );
     }
     // The paper's Fig. 15, each object from its own height, shown scaled to the same height.
@@ -330,7 +331,7 @@ fn record_trails(mut exhibits: Query<(&mut Exhibit, &FallState)>) {
         }
         let world = exhibit.column.transform_point(path.position());
         let offset = path.position() - exhibit.release;
-        let color = motion_color(path.motion());
+        let color = FallGizmos::motion_color(path.motion());
         exhibit
             .trail
             .push((world, Vec2::new(offset.x, offset.z), color));

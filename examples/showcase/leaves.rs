@@ -8,7 +8,7 @@
 use bevy::prelude::*;
 use bevy_windfall::aero::{AeroState, PlateState};
 use bevy_windfall::freefall::{
-    CloudLod, CloudRegion, FallLod, FallPreset, FallRng, LeafCloud, LeafCloudState, PrimitiveMotion,
+    CloudRegion, FallLod, FallPreset, FallRng, LeafCloud, LeafCloudState, PrimitiveMotion,
 };
 use bevy_windfall::gpu::{LeafCloudLook, SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 use bevy_windfall::lod::LodTiers;
@@ -340,7 +340,7 @@ fn setup(
                 min: Vec3::new(-36.0, 0.5, -40.0),
                 max: Vec3::new(24.0, 16.0, 8.0),
             },
-            lod: CloudLod::default(),
+            lod: LodTiers::default(),
             recycle_after: Some(3.0),
         },
         LeafCloudLook::default(),

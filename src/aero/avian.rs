@@ -1,5 +1,6 @@
 //! Lift and drag on avian3d rigid bodies (feature `avian`).
 
+use crate::error::InvalidValue;
 use avian3d::prelude::ReadRigidBodyForces;
 use avian3d::prelude::{ComputedCenterOfMass, ComputedMass, Forces, WriteRigidBodyForces};
 use bevy::app::{App, FixedPostUpdate, Plugin};
@@ -55,11 +56,11 @@ impl AvianAero {
     /// two-sided: build from one side of a double-sided mesh, or the area counts twice.
     pub fn from_mesh(mesh: &Mesh, coefficients: AeroCoefficients) -> Result<Self, AeroError> {
         coefficients.validate()?;
-        let no_positions = AeroError::Invalid {
+        let no_positions = AeroError::Invalid(InvalidValue {
             field: "mesh",
             value: 0.0,
             reason: "needs Float32x3 positions",
-        };
+        });
         let Some(VertexAttributeValues::Float32x3(positions)) =
             mesh.attribute(Mesh::ATTRIBUTE_POSITION)
         else {
@@ -94,7 +95,7 @@ impl AvianAero {
 
 /// Applies [`AvianAero`] forces right before avian's physics step: in avian's schedule
 /// (`FixedPostUpdate`, as `PhysicsPlugins::default()`), in `PhysicsSystems::First`, and after the
-/// wind's clock has advanced ([`WindfallSystems::Wind`](crate::WindfallSystems::Wind) runs in `FixedUpdate`, earlier in the
+/// wind's clock has advanced ([`WindfallSystems::Wind`](crate::schedule::WindfallSystems::Wind) runs in `FixedUpdate`, earlier in the
 /// same fixed step). Add it beside `PhysicsPlugins`; if you run avian in another schedule, use
 /// [`AvianAeroPlugin::new`] with the same one.
 pub struct AvianAeroPlugin {
@@ -118,7 +119,6 @@ impl AvianAeroPlugin {
 
 impl Plugin for AvianAeroPlugin {
     fn build(&self, app: &mut App) {
-        crate::configure_sets(app);
         app.register_type::<AvianAero>().add_systems(
             self.schedule,
             apply_aero.in_set(avian3d::schedule::PhysicsSystems::First),

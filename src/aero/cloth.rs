@@ -1,6 +1,7 @@
 //! A particle cloth (XPBD distance constraints, pinned nodes, gravity) whose triangles receive
 //! lift and drag: a physically simulated flag.
 
+use crate::error::InvalidValue;
 use bevy::math::Vec3;
 
 use super::force::face_force;
@@ -17,9 +18,9 @@ pub enum Pinning {
 }
 
 /// Most substeps per step.
-pub const CLOTH_MAX_SUBSTEPS: u32 = 64;
+pub(crate) const CLOTH_MAX_SUBSTEPS: u32 = 64;
 /// Most constraint iterations per substep: [`ParticleCloth::iterations`] is clamped to it.
-pub const CLOTH_MAX_ITERATIONS: usize = 64;
+pub(crate) const CLOTH_MAX_ITERATIONS: usize = 64;
 /// Node masses a particle cloth accepts, kg: lighter nodes would make 1/m overflow the solver's
 /// rates, heavier ones lose every force to rounding.
 const MIN_NODE_MASS: f64 = 1e-12;
@@ -33,7 +34,7 @@ const MAX_NODE_MASS: f64 = 1e9;
 /// (v' = (v + h (g + L/m + K u/m)) / (1 + h K/m), stable at any step, no overshoot of the wind);
 /// then XPBD projection of stretch, shear and bend constraints, and velocities from the moved
 /// positions. At least [`ParticleCloth::min_substeps`] substeps per step, more (up to
-/// [`CLOTH_MAX_SUBSTEPS`]) to keep h × lift rate ≤ 1/4; past that cap the lift is limited to
+/// [`ParticleCloth::MAX_SUBSTEPS`](crate::aero::ParticleCloth::MAX_SUBSTEPS)) to keep h × lift rate ≤ 1/4; past that cap the lift is limited to
 /// turning a node's relative velocity by 1/4 rad per substep.
 #[derive(Clone, Debug)]
 pub struct ParticleCloth {
@@ -49,10 +50,10 @@ pub struct ParticleCloth {
     tethers: Vec<(u32, u32, f32)>,
     node_mass: f32,
     coefficients: AeroCoefficients,
-    /// Constraint iterations per substep, used within 1..=[`CLOTH_MAX_ITERATIONS`].
+    /// Constraint iterations per substep, used within 1..=[`ParticleCloth::MAX_ITERATIONS`](crate::aero::ParticleCloth::MAX_ITERATIONS).
     pub iterations: usize,
     /// Fewest substeps per step (XPBD converges by substeps more than by iterations), used
-    /// within 1..=[`CLOTH_MAX_SUBSTEPS`].
+    /// within 1..=[`ParticleCloth::MAX_SUBSTEPS`](crate::aero::ParticleCloth::MAX_SUBSTEPS).
     pub min_substeps: u32,
     lift: Vec<Vec3>,
     drag: Vec<f32>,
@@ -69,18 +70,20 @@ impl ParticleCloth {
         coefficients: AeroCoefficients,
         pinning: Pinning,
     ) -> Result<Self, AeroError> {
-        let invalid = |field, value, reason| AeroError::Invalid {
-            field,
-            value,
-            reason,
-        };
-        // The grid's own error, field and all.
-        grid.validate().map_err(|e| match e {
-            ClothError::Invalid {
+        let invalid = |field, value, reason| {
+            AeroError::Invalid(InvalidValue {
                 field,
                 value,
                 reason,
-            } => invalid(field, value, reason),
+            })
+        };
+        // The grid's own error, field and all.
+        grid.validate().map_err(|e| match e {
+            ClothError::Invalid(InvalidValue {
+                field,
+                value,
+                reason,
+            }) => invalid(field, value, reason),
             ClothError::Count {
                 field,
                 value,
@@ -236,7 +239,7 @@ impl ParticleCloth {
 
     /// Advances by `dt` under `gravity` in the fluid velocity `wind(p)` (local frame). A
     /// non-finite or non-positive `dt` or a non-finite `gravity` leaves the cloth as it is
-    /// (the plugin reports such a cloth with [`PhysicalClothInvalid`](super::PhysicalClothInvalid)).
+    /// (the plugin reports such a cloth with [`PhysicalClothInvalid`](super::physical_cloth::PhysicalClothInvalid)).
     pub fn step(&mut self, dt: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
         if !(dt.is_finite() && dt > 0.0 && gravity.is_finite()) {
             return;
@@ -366,4 +369,13 @@ impl ParticleCloth {
             *v = (*p - *q) / h;
         }
     }
+}
+
+/// Limits and constants of [`ParticleCloth`].
+impl ParticleCloth {
+    /// Most constraint iterations per substep: [`ParticleCloth::iterations`] is clamped to it.
+    pub const MAX_ITERATIONS: usize = CLOTH_MAX_ITERATIONS;
+
+    /// Most substeps per step.
+    pub const MAX_SUBSTEPS: u32 = CLOTH_MAX_SUBSTEPS;
 }

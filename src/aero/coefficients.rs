@@ -1,13 +1,14 @@
 //! What a body flies in and how hard it is pushed: [`AeroCoefficients`], and [`AeroError`], the
 //! error every aero body's validation returns.
 
+use crate::error::InvalidValue;
 use bevy::reflect::Reflect;
 use thiserror::Error;
 
 /// Largest drag or lift coefficient accepted.
-pub const MAX_COEFFICIENT: f32 = 1.0e3;
+pub(crate) const MAX_COEFFICIENT: f32 = 1.0e3;
 /// Largest fluid density accepted, kg/m³ (a hundred times water's).
-pub const MAX_FLUID_DENSITY: f32 = 1.0e5;
+pub(crate) const MAX_FLUID_DENSITY: f32 = 1.0e5;
 
 /// Fluid and coefficients of a body.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -26,7 +27,7 @@ impl Default for AeroCoefficients {
         Self {
             drag: 1.2,
             lift: 1.0,
-            density: super::AIR_DENSITY,
+            density: super::force::AIR_DENSITY,
         }
     }
 }
@@ -35,22 +36,15 @@ impl Default for AeroCoefficients {
 #[derive(Clone, Copy, Debug, PartialEq, Error, Reflect)]
 pub enum AeroError {
     /// A number outside its valid range.
-    #[error("`{field}` = {value}: {reason}")]
-    Invalid {
-        /// The field's name.
-        field: &'static str,
-        /// The rejected value.
-        value: f32,
-        /// What it must be.
-        reason: &'static str,
-    },
+    #[error(transparent)]
+    Invalid(#[from] InvalidValue),
 }
 
 impl AeroError {
     /// Name of the offending field.
     pub fn field(&self) -> &'static str {
         match self {
-            Self::Invalid { field, .. } => field,
+            Self::Invalid(InvalidValue { field, .. }) => field,
         }
     }
 }
@@ -64,11 +58,11 @@ pub(super) fn check(
     if ok && value.is_finite() {
         Ok(())
     } else {
-        Err(AeroError::Invalid {
+        Err(AeroError::Invalid(InvalidValue {
             field,
             value,
             reason,
-        })
+        }))
     }
 }
 
@@ -94,4 +88,19 @@ impl AeroCoefficients {
             "must be > 0 and ≤ 1e5 kg/m³",
         )
     }
+}
+
+/// Limits and constants of [`AeroCoefficients`].
+impl AeroCoefficients {
+    /// Air at about 20 °C, kg/m³.
+    pub const AIR_DENSITY: f32 = crate::aero::force::AIR_DENSITY;
+
+    /// Water at 25 °C, kg/m³.
+    pub const WATER_DENSITY: f32 = crate::aero::force::WATER_DENSITY;
+
+    /// Largest drag or lift coefficient accepted.
+    pub const MAX_COEFFICIENT: f32 = MAX_COEFFICIENT;
+
+    /// Largest fluid density accepted, kg/m³ (a hundred times water's).
+    pub const MAX_FLUID_DENSITY: f32 = MAX_FLUID_DENSITY;
 }

@@ -3,9 +3,9 @@
 use bevy::math::{DVec3, Vec3};
 
 /// Air at about 20 °C, kg/m³.
-pub const AIR_DENSITY: f32 = 1.204;
+pub(crate) const AIR_DENSITY: f32 = 1.204;
 /// Water at 25 °C, kg/m³.
-pub const WATER_DENSITY: f32 = 997.0;
+pub(crate) const WATER_DENSITY: f32 = 997.0;
 
 /// Drag plus lift on one face, N.
 ///

@@ -15,21 +15,19 @@
 
 #[cfg(feature = "avian")]
 mod avian;
+mod body;
 mod cloth;
 mod coefficients;
 mod force;
+mod physical_cloth;
 mod plate;
 mod plugin;
 
 #[cfg(feature = "avian")]
 pub use avian::{AvianAero, AvianAeroPlugin};
-pub use cloth::{CLOTH_MAX_ITERATIONS, CLOTH_MAX_SUBSTEPS, ParticleCloth, Pinning};
-pub use force::{AIR_DENSITY, WATER_DENSITY, face_force};
-pub use plate::{
-    AeroCoefficients, AeroError, Face, LIFT_STEP, MAX_COEFFICIENT, MAX_FLUID_DENSITY,
-    MAX_STATE_SPEED, MAX_SUBSTEPS, PlateState, RigidPlate,
-};
-pub use plugin::{
-    AeroBody, AeroBodyInvalid, AeroPlugin, AeroState, PhysicalCloth, PhysicalClothInvalid,
-    PhysicalClothState,
-};
+pub use body::{AeroBody, AeroBodyInvalid, AeroState};
+pub use cloth::{ParticleCloth, Pinning};
+pub use force::face_force;
+pub use physical_cloth::{PhysicalCloth, PhysicalClothInvalid, PhysicalClothState};
+pub use plate::{AeroCoefficients, AeroError, Face, PlateState, RigidPlate};
+pub use plugin::AeroPlugin;

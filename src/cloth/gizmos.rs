@@ -11,11 +11,12 @@ use bevy::reflect::Reflect;
 use bevy::transform::TransformSystems;
 use bevy::transform::components::GlobalTransform;
 
-use super::{Cloth, ClothState};
+use super::component::Cloth;
+use super::component::ClothState;
 
 /// Draws every [`Cloth`]'s yarns when the [`ClothGizmos`] gizmo group is enabled (off by
 /// default; part of [`WindfallDebugPlugin`](crate::WindfallDebugPlugin)).
-pub struct ClothGizmosPlugin;
+pub(crate) struct ClothGizmosPlugin;
 
 impl Plugin for ClothGizmosPlugin {
     fn build(&self, app: &mut App) {

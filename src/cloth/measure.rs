@@ -1,6 +1,6 @@
 //! What a viewer sees of a flapping flag, measured over time: how far the free edge swings, how
 //! much the cloth bends, and how fast it flaps. For any cloth laid out like
-//! [`ClothSim`](super::ClothSim) on a pole (yarns from the pole along +X, flapping along Z,
+//! [`ClothSim`](super::sim::ClothSim) on a pole (yarns from the pole along +X, flapping along Z,
 //! row-major), procedural or physical.
 
 use bevy::math::Vec3;

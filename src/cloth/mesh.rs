@@ -7,7 +7,7 @@ use bevy::mesh::{Indices, Mesh, PrimitiveTopology, VertexAttributeValues};
 /// A double-sided mesh of a `rows × columns` node grid: the front side's vertices, then the
 /// back side's with flipped normals and reversed winding. UVs run along the yarns (u) and down
 /// the cloth (v). Kept in main-world memory so it can be rewritten every frame.
-pub fn cloth_mesh(rows: usize, columns: usize, positions: &[Vec3]) -> Mesh {
+pub(crate) fn cloth_mesh(rows: usize, columns: usize, positions: &[Vec3]) -> Mesh {
     let count = rows * columns;
     let mut uvs = Vec::with_capacity(2 * count);
     for _side in 0..2 {
@@ -49,7 +49,7 @@ pub fn cloth_mesh(rows: usize, columns: usize, positions: &[Vec3]) -> Mesh {
 /// Rewrites the positions and normals of a mesh made by [`cloth_mesh`] in place. Front normals
 /// are along-yarn tangent × upward tangent by central differences (one-sided at the edges), +Z
 /// where the grid is degenerate.
-pub fn write_cloth_mesh(mesh: &mut Mesh, rows: usize, columns: usize, positions: &[Vec3]) {
+pub(crate) fn write_cloth_mesh(mesh: &mut Mesh, rows: usize, columns: usize, positions: &[Vec3]) {
     let count = rows * columns;
     if let Some(VertexAttributeValues::Float32x3(out)) =
         mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)

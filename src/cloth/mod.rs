@@ -15,6 +15,7 @@
 //! The math lives in plain types ([`ClothSim`], [`DescriptorFilter`]); [`ClothPlugin`] moves
 //! every [`Cloth`] on the fixed timestep and rewrites its mesh once per rendered frame.
 
+mod component;
 mod constraints;
 mod descriptor;
 mod directions;
@@ -22,28 +23,23 @@ mod directions;
 mod gizmos;
 mod measure;
 mod mesh;
+pub(crate) use mesh::{cloth_mesh, write_cloth_mesh};
 mod noise;
 mod params;
 mod plugin;
 mod presets;
 mod sim;
 
-pub use constraints::align_to_leading_yarn;
-pub use descriptor::{
-    DescriptorFilter, HarmonicFilter, bend_angles, total_curvature, trace_yarn, yarn_from_angles,
-};
+pub use descriptor::{DescriptorFilter, HarmonicFilter};
 
 #[cfg(feature = "gizmos")]
-pub use gizmos::{ClothGizmos, ClothGizmosPlugin};
+pub use gizmos::ClothGizmos;
+#[cfg(feature = "gizmos")]
+pub(crate) use gizmos::ClothGizmosPlugin;
 pub use measure::{FlapRecorder, FlapStats};
-pub use mesh::{cloth_mesh, write_cloth_mesh};
-pub use noise::NoiseSheet;
-pub use params::{
-    ClothError, ClothGrid, ClothParams, ClothWindModel, LeadingYarn, MAX_CLOTH_NODES,
-    MAX_CLOTH_SIZE,
-};
-pub use plugin::{
-    CLOTH_LOD_FADE, Cloth, ClothInvalid, ClothLod, ClothPlugin, ClothState, wind_steps_per_frame,
-};
+
+pub use component::{Cloth, ClothInvalid, ClothLod, ClothState};
+pub use params::{ClothError, ClothGrid, ClothParams, ClothWindModel, LeadingYarn};
+pub use plugin::ClothPlugin;
 pub use presets::ClothPreset;
-pub use sim::{ClothAttachment, ClothSim, MAX_NOISE_CELLS, PAPER_FPS, air_speed, steps_for_speed};
+pub use sim::{ClothAttachment, ClothSim};

@@ -1,14 +1,15 @@
 //! The noise matrix that drives the yarn angles (cloth paper §3.1, §4).
 
-use crate::spectrum::{GridShape, periodic_lerp, try_fbm};
+use crate::error::InvalidValue;
+use crate::spectrum::{GridShape, try_fbm};
 
-use super::ClothError;
+use super::params::ClothError;
 
 /// 1/f^β noise scaled into [−1, 1]: rows × columns for frozen wind (a 2-D matrix, §4.1), or
 /// frames × rows × columns for non-frozen wind (a 3-D matrix, §4.2). Read between nodes by
 /// periodic linear interpolation, so shifts need not be whole steps.
 #[derive(Clone, Debug)]
-pub struct NoiseSheet {
+pub(crate) struct NoiseSheet {
     shape: GridShape,
     values: Vec<f32>,
 }
@@ -27,10 +28,12 @@ impl NoiseSheet {
             dims.push(frames);
         }
         dims.extend([rows.max(2), columns.max(2)]);
-        let mut values = try_fbm(&dims, beta, seed).map_err(|_| ClothError::Invalid {
-            field: "beta",
-            value: beta,
-            reason: "must be finite and ≥ 0",
+        let mut values = try_fbm(&dims, beta, seed).map_err(|_| {
+            ClothError::Invalid(InvalidValue {
+                field: "beta",
+                value: beta,
+                reason: "must be finite and ≥ 0",
+            })
         })?;
         // Scale into [−1, 1]: the angles then span exactly the amplitude range [−θ, θ].
         let peak = values.iter().fold(0.0f32, |m, v| m.max(v.abs()));
@@ -41,11 +44,6 @@ impl NoiseSheet {
             shape: GridShape::new(&dims),
             values,
         })
-    }
-
-    /// Whether the sheet has a time axis (non-frozen wind).
-    pub fn evolving(&self) -> bool {
-        self.shape.dims().len() == 3
     }
 
     /// (frames, rows, columns); frames is 1 for a frozen sheet.
@@ -61,14 +59,5 @@ impl NoiseSheet {
     pub fn line(&self, index: usize) -> &[f32] {
         let (_, _, columns) = self.size();
         &self.values[index * columns..(index + 1) * columns]
-    }
-
-    /// Value at fractional (frame, row, column), wrapping every axis; in [−1, 1].
-    pub fn sample(&self, frame: f64, row: f64, column: f64) -> f32 {
-        if self.evolving() {
-            periodic_lerp(&self.shape, &self.values, &[frame, row, column])
-        } else {
-            periodic_lerp(&self.shape, &self.values, &[row, column])
-        }
     }
 }

@@ -1,5 +1,6 @@
 //! The cloth's grid and the six interactive parameters of the cloth paper §5.2.
 
+use crate::error::InvalidValue;
 use bevy::reflect::Reflect;
 use thiserror::Error;
 
@@ -69,7 +70,7 @@ impl LeadingYarn {
     }
 }
 
-/// Frozen (a 2-D noise matrix shifted each frame, §4.1) or non-frozen (a 3-D matrix sliced in
+/// Frozen (a 2-D noise matrix shifted each frame, §4.1) or evolving (the paper's non-frozen: a 3-D matrix sliced in
 /// time and shifted, §4.2) wind on the cloth.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub enum ClothWindModel {
@@ -78,7 +79,7 @@ pub enum ClothWindModel {
     /// 3-D noise of `frames` slices, one per paper frame (50 per second), each shifted on by
     /// |v| (§4.2). The slices are periodic, so the change loops every `frames` / 50 s (the
     /// shift goes on, so the cloth does not repeat with it).
-    NonFrozen {
+    Evolving {
         /// Slices of the noise along time, ≥ 2.
         frames: usize,
     },
@@ -106,7 +107,7 @@ pub struct ClothParams {
     /// Frozen or non-frozen wind.
     pub model: ClothWindModel,
     /// W1 of eq. 8: how far the pole edge bows downwind at its middle, as a fraction of the
-    /// edge's length (grows with the wind, see [`ClothSim::rebuild`](super::ClothSim::rebuild)).
+    /// edge's length (grows with the wind, see [`ClothSim::rebuild`](super::sim::ClothSim::rebuild)).
     pub bow: f32,
     /// W2 of eq. 8: how far the pole edge bulges across the stream at its middle, as a fraction
     /// of the edge's length.
@@ -115,31 +116,18 @@ pub struct ClothParams {
     /// eq. 7 is this times [`ClothGrid::row_spacing`]).
     pub max_stretch: f32,
     /// The air speed θ is the amplitude at, m/s (the middle of the row's Table 1 band): in
-    /// other winds the waves scale by √(U / this) (see [`ClothSim::rebuild`](super::ClothSim::rebuild)).
+    /// other winds the waves scale by √(U / this) (see [`ClothSim::rebuild`](super::sim::ClothSim::rebuild)).
     pub reference_speed: f32,
     /// Seed of the noise.
     pub seed: u64,
-}
-
-impl Default for ClothParams {
-    fn default() -> Self {
-        super::presets::ClothPreset::FlagGentleFrozen.params()
-    }
 }
 
 /// A cloth configuration field out of range; [`ClothError::field`] names it.
 #[derive(Clone, Debug, Error, PartialEq, Reflect)]
 pub enum ClothError {
     /// A number outside its valid range.
-    #[error("`{field}` = {value}: {reason}")]
-    Invalid {
-        /// The field's name.
-        field: &'static str,
-        /// The rejected value.
-        value: f32,
-        /// What it must be.
-        reason: &'static str,
-    },
+    #[error(transparent)]
+    Invalid(#[from] InvalidValue),
     /// A count outside its valid range.
     #[error("`{field}` = {value}: {reason}")]
     Count {
@@ -156,7 +144,7 @@ impl ClothError {
     /// Name of the offending field (`"grid.columns"`, `"params.amplitude"`, ...).
     pub fn field(&self) -> &'static str {
         match self {
-            Self::Invalid { field, .. } | Self::Count { field, .. } => field,
+            Self::Invalid(InvalidValue { field, .. }) | Self::Count { field, .. } => field,
         }
     }
 }
@@ -170,18 +158,18 @@ fn finite(
     if value.is_finite() && ok {
         Ok(())
     } else {
-        Err(ClothError::Invalid {
+        Err(ClothError::Invalid(InvalidValue {
             field,
             value,
             reason,
-        })
+        }))
     }
 }
 
 /// Most nodes a cloth may have (1024 × 1024).
-pub const MAX_CLOTH_NODES: usize = 1 << 20;
+pub(crate) const MAX_CLOTH_NODES: usize = 1 << 20;
 /// Largest width or height of a cloth, m: every node position stays far inside f32's range.
-pub const MAX_CLOTH_SIZE: f32 = 1.0e4;
+pub(crate) const MAX_CLOTH_SIZE: f32 = 1.0e4;
 
 impl ClothGrid {
     /// Checks the grid.
@@ -275,7 +263,7 @@ impl ClothParams {
                 reason: "band-pass min exceeds max",
             });
         }
-        if let ClothWindModel::NonFrozen { frames } = self.model
+        if let ClothWindModel::Evolving { frames } = self.model
             && frames < 2
         {
             return Err(ClothError::Count {
@@ -286,4 +274,13 @@ impl ClothParams {
         }
         Ok(())
     }
+}
+
+/// Limits and constants of [`ClothGrid`].
+impl ClothGrid {
+    /// Most nodes a cloth may have (1024 × 1024).
+    pub const MAX_NODES: usize = MAX_CLOTH_NODES;
+
+    /// Largest width or height of a cloth, m: every node position stays far inside f32's range.
+    pub const MAX_SIZE: f32 = MAX_CLOTH_SIZE;
 }

@@ -7,8 +7,10 @@
 
 use std::f32::consts::FRAC_PI_2;
 
+use super::component::Cloth;
 use super::descriptor::HarmonicFilter;
 use super::params::{ClothParams, ClothWindModel, LeadingYarn};
+use super::sim::ClothAttachment;
 
 /// θ, β, |v|, |u|, BPF range, non-frozen, and what the paper observed.
 struct TableRow {
@@ -21,39 +23,41 @@ struct TableRow {
     observation: &'static str,
 }
 
-/// One row of Table 1.
+/// One row of Table 1, named for what the paper saw (its "observation" column) and its wind
+/// model: frozen (§4.1) or evolving (the paper's non-frozen, §4.2). Spawn one with
+/// [`ClothPreset::cloth`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[allow(missing_docs)] // the names say it: object, paper's wind band, model
+#[allow(missing_docs)] // the names say it: object, what it does, wind model
 pub enum ClothPreset {
-    BannerLightFrozen,
-    BannerLightNonFrozen,
-    BannerGentleFrozen,
-    BannerGentleNonFrozen,
-    CurtainGentleFrozen,
-    CurtainGentleNonFrozen,
-    CurtainModerateFrozen,
-    CurtainModerateNonFrozen,
-    FlagGentleFrozen,
-    FlagGentleNonFrozen,
-    FlagModerateFrozen,
-    FlagModerateNonFrozen,
+    BannerFlutteringFrozen,
+    BannerFlutteringEvolving,
+    BannerFlappingFrozen,
+    BannerFlappingEvolving,
+    CurtainDriftingFrozen,
+    CurtainDriftingEvolving,
+    CurtainFlutteringFrozen,
+    CurtainFlutteringEvolving,
+    FlagFlappingFrozen,
+    FlagFlappingEvolving,
+    FlagUncurlingFrozen,
+    FlagUncurlingEvolving,
 }
 
 impl ClothPreset {
     /// Every preset, in Table 1's order.
     pub const ALL: [Self; 12] = [
-        Self::BannerLightFrozen,
-        Self::BannerLightNonFrozen,
-        Self::BannerGentleFrozen,
-        Self::BannerGentleNonFrozen,
-        Self::CurtainGentleFrozen,
-        Self::CurtainGentleNonFrozen,
-        Self::CurtainModerateFrozen,
-        Self::CurtainModerateNonFrozen,
-        Self::FlagGentleFrozen,
-        Self::FlagGentleNonFrozen,
-        Self::FlagModerateFrozen,
-        Self::FlagModerateNonFrozen,
+        Self::BannerFlutteringFrozen,
+        Self::BannerFlutteringEvolving,
+        Self::BannerFlappingFrozen,
+        Self::BannerFlappingEvolving,
+        Self::CurtainDriftingFrozen,
+        Self::CurtainDriftingEvolving,
+        Self::CurtainFlutteringFrozen,
+        Self::CurtainFlutteringEvolving,
+        Self::FlagFlappingFrozen,
+        Self::FlagFlappingEvolving,
+        Self::FlagUncurlingFrozen,
+        Self::FlagUncurlingEvolving,
     ];
 
     /// Table 1's row.
@@ -70,31 +74,58 @@ impl ClothPreset {
         };
         #[rustfmt::skip]
         let table = match self {
-            BannerLightFrozen => row(1.4, 2.75, 1.0, 0.0, Some((3, 7)), false, "banner lightly fluttering"),
-            BannerLightNonFrozen => row(1.4, 2.75, 2.0, 1.0, Some((3, 7)), true, "banner lightly fluttering"),
-            BannerGentleFrozen => row(1.4, 2.25, 2.0, 1.0, Some((3, 7)), false, "banner intensively flapping"),
-            BannerGentleNonFrozen => row(1.4, 2.25, 8.0, 0.0, Some((1, 7)), true, "banner intensively flapping"),
-            CurtainGentleFrozen => row(1.9, 2.5, 2.0, 1.0, None, false, "light curtain moving toward wind"),
-            CurtainGentleNonFrozen => row(1.9, 2.75, 4.0, 0.0, None, true, "light curtain moving toward wind"),
-            CurtainModerateFrozen => row(2.8, 2.5, 1.0, 0.0, None, false, "curtain intensively fluttering"),
-            CurtainModerateNonFrozen => row(FRAC_PI_2, 2.75, 10.0, 1.0, Some((1, 6)), true, "curtain intensively fluttering"),
-            FlagGentleFrozen => row(1.4, 2.75, 2.0, 1.0, Some((3, 5)), false, "light flag flapping"),
-            FlagGentleNonFrozen => row(0.8, 2.5, 2.0, 1.0, Some((3, 6)), true, "light flag flapping"),
-            FlagModerateFrozen => row(FRAC_PI_2, 2.9, 3.0, 1.0, Some((3, 5)), false, "uncurling of flag"),
-            FlagModerateNonFrozen => row(2.0, 2.85, 4.0, 0.0, Some((3, 6)), true, "uncurling of flag"),
+            BannerFlutteringFrozen => row(1.4, 2.75, 1.0, 0.0, Some((3, 7)), false, "banner lightly fluttering"),
+            BannerFlutteringEvolving => row(1.4, 2.75, 2.0, 1.0, Some((3, 7)), true, "banner lightly fluttering"),
+            BannerFlappingFrozen => row(1.4, 2.25, 2.0, 1.0, Some((3, 7)), false, "banner intensively flapping"),
+            BannerFlappingEvolving => row(1.4, 2.25, 8.0, 0.0, Some((1, 7)), true, "banner intensively flapping"),
+            CurtainDriftingFrozen => row(1.9, 2.5, 2.0, 1.0, None, false, "light curtain moving toward wind"),
+            CurtainDriftingEvolving => row(1.9, 2.75, 4.0, 0.0, None, true, "light curtain moving toward wind"),
+            CurtainFlutteringFrozen => row(2.8, 2.5, 1.0, 0.0, None, false, "curtain intensively fluttering"),
+            CurtainFlutteringEvolving => row(FRAC_PI_2, 2.75, 10.0, 1.0, Some((1, 6)), true, "curtain intensively fluttering"),
+            FlagFlappingFrozen => row(1.4, 2.75, 2.0, 1.0, Some((3, 5)), false, "light flag flapping"),
+            FlagFlappingEvolving => row(0.8, 2.5, 2.0, 1.0, Some((3, 6)), true, "light flag flapping"),
+            FlagUncurlingFrozen => row(FRAC_PI_2, 2.9, 3.0, 1.0, Some((3, 5)), false, "uncurling of flag"),
+            FlagUncurlingEvolving => row(2.0, 2.85, 4.0, 0.0, Some((3, 6)), true, "uncurling of flag"),
         };
         table
     }
 
     /// "banner", "curtain" or "flag".
+    pub fn kind(self) -> &'static str {
+        use ClothPreset::*;
+        match self {
+            BannerFlutteringFrozen
+            | BannerFlutteringEvolving
+            | BannerFlappingFrozen
+            | BannerFlappingEvolving => "banner",
+            CurtainDriftingFrozen
+            | CurtainDriftingEvolving
+            | CurtainFlutteringFrozen
+            | CurtainFlutteringEvolving => "curtain",
+            FlagFlappingFrozen
+            | FlagFlappingEvolving
+            | FlagUncurlingFrozen
+            | FlagUncurlingEvolving => "flag",
+        }
+    }
+
+    /// "banner", "curtain" or "flag".
+    #[deprecated(since = "0.2.0", note = "renamed to `kind`")]
     pub fn object(self) -> &'static str {
-        let name = format!("{self:?}");
-        if name.starts_with("Banner") {
-            "banner"
-        } else if name.starts_with("Curtain") {
-            "curtain"
-        } else {
-            "flag"
+        self.kind()
+    }
+
+    /// A [`Cloth`] of this row, ready to spawn: its parameters, on a pole (banners, flags) or a
+    /// rod (curtains), following the wind.
+    pub fn cloth(self) -> Cloth {
+        Cloth {
+            params: self.params(),
+            attachment: if self.kind() == "curtain" {
+                ClothAttachment::Rod
+            } else {
+                ClothAttachment::Pole
+            },
+            ..Cloth::default()
         }
     }
 
@@ -109,18 +140,24 @@ impl ClothPreset {
     pub fn band_speed(self) -> f32 {
         use ClothPreset::*;
         match self {
-            BannerLightFrozen | BannerLightNonFrozen => 3.15,
-            CurtainModerateFrozen
-            | CurtainModerateNonFrozen
-            | FlagModerateFrozen
-            | FlagModerateNonFrozen => 10.7,
+            BannerFlutteringFrozen | BannerFlutteringEvolving => 3.15,
+            CurtainFlutteringFrozen
+            | CurtainFlutteringEvolving
+            | FlagUncurlingFrozen
+            | FlagUncurlingEvolving => 10.7,
             _ => 5.4,
         }
     }
 
-    /// Whether this row uses non-frozen wind.
-    pub fn non_frozen(self) -> bool {
+    /// Whether this row uses evolving (the paper's non-frozen) wind.
+    pub fn evolving(self) -> bool {
         self.row().non_frozen
+    }
+
+    /// Whether this row uses evolving (the paper's non-frozen) wind.
+    #[deprecated(since = "0.2.0", note = "renamed to `evolving`")]
+    pub fn non_frozen(self) -> bool {
+        self.evolving()
     }
 
     /// What the paper observed for this row.
@@ -141,7 +178,7 @@ impl ClothPreset {
         } = self.row();
         // Eq. 8's W1 and W2 (the paper gives no values): a banner's long edge bulges more than a
         // flag's; a curtain hangs from a rigid rod.
-        let (bow, lean) = match self.object() {
+        let (bow, lean) = match self.kind() {
             "banner" => (0.08, 0.04),
             "flag" => (0.05, 0.03),
             _ => (0.0, 0.0),
@@ -158,7 +195,7 @@ impl ClothPreset {
                 None => HarmonicFilter::All,
             },
             model: if non_frozen {
-                ClothWindModel::NonFrozen { frames: 64 }
+                ClothWindModel::Evolving { frames: 64 }
             } else {
                 ClothWindModel::Frozen
             },
@@ -168,5 +205,54 @@ impl ClothPreset {
             reference_speed: self.band_speed(),
             seed: 1,
         }
+    }
+}
+
+/// The names of the first release (the paper's wind band and "non-frozen"), kept for one
+/// release.
+#[allow(non_upper_case_globals)]
+impl ClothPreset {
+    /// Renamed to [`ClothPreset::BannerFlutteringFrozen`].
+    #[deprecated(since = "0.2.0", note = "renamed to `BannerFlutteringFrozen`")]
+    pub const BannerLightFrozen: Self = Self::BannerFlutteringFrozen;
+    /// Renamed to [`ClothPreset::BannerFlutteringEvolving`].
+    #[deprecated(since = "0.2.0", note = "renamed to `BannerFlutteringEvolving`")]
+    pub const BannerLightNonFrozen: Self = Self::BannerFlutteringEvolving;
+    /// Renamed to [`ClothPreset::BannerFlappingFrozen`].
+    #[deprecated(since = "0.2.0", note = "renamed to `BannerFlappingFrozen`")]
+    pub const BannerGentleFrozen: Self = Self::BannerFlappingFrozen;
+    /// Renamed to [`ClothPreset::BannerFlappingEvolving`].
+    #[deprecated(since = "0.2.0", note = "renamed to `BannerFlappingEvolving`")]
+    pub const BannerGentleNonFrozen: Self = Self::BannerFlappingEvolving;
+    /// Renamed to [`ClothPreset::CurtainDriftingFrozen`].
+    #[deprecated(since = "0.2.0", note = "renamed to `CurtainDriftingFrozen`")]
+    pub const CurtainGentleFrozen: Self = Self::CurtainDriftingFrozen;
+    /// Renamed to [`ClothPreset::CurtainDriftingEvolving`].
+    #[deprecated(since = "0.2.0", note = "renamed to `CurtainDriftingEvolving`")]
+    pub const CurtainGentleNonFrozen: Self = Self::CurtainDriftingEvolving;
+    /// Renamed to [`ClothPreset::CurtainFlutteringFrozen`].
+    #[deprecated(since = "0.2.0", note = "renamed to `CurtainFlutteringFrozen`")]
+    pub const CurtainModerateFrozen: Self = Self::CurtainFlutteringFrozen;
+    /// Renamed to [`ClothPreset::CurtainFlutteringEvolving`].
+    #[deprecated(since = "0.2.0", note = "renamed to `CurtainFlutteringEvolving`")]
+    pub const CurtainModerateNonFrozen: Self = Self::CurtainFlutteringEvolving;
+    /// Renamed to [`ClothPreset::FlagFlappingFrozen`].
+    #[deprecated(since = "0.2.0", note = "renamed to `FlagFlappingFrozen`")]
+    pub const FlagGentleFrozen: Self = Self::FlagFlappingFrozen;
+    /// Renamed to [`ClothPreset::FlagFlappingEvolving`].
+    #[deprecated(since = "0.2.0", note = "renamed to `FlagFlappingEvolving`")]
+    pub const FlagGentleNonFrozen: Self = Self::FlagFlappingEvolving;
+    /// Renamed to [`ClothPreset::FlagUncurlingFrozen`].
+    #[deprecated(since = "0.2.0", note = "renamed to `FlagUncurlingFrozen`")]
+    pub const FlagModerateFrozen: Self = Self::FlagUncurlingFrozen;
+    /// Renamed to [`ClothPreset::FlagUncurlingEvolving`].
+    #[deprecated(since = "0.2.0", note = "renamed to `FlagUncurlingEvolving`")]
+    pub const FlagModerateNonFrozen: Self = Self::FlagUncurlingEvolving;
+}
+
+impl Default for ClothParams {
+    /// The gentle frozen flag of Table 1 ([`ClothPreset::FlagFlappingFrozen`]).
+    fn default() -> Self {
+        ClothPreset::FlagFlappingFrozen.params()
     }
 }

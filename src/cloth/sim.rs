@@ -6,7 +6,7 @@
 //! strength, and is traced from its pole-edge node (eq. 8) in equal segments; eq. 7 then aligns
 //! the yarns. See [`ClothSim::rebuild`] for what the wind's strength does.
 
-use std::f32::consts::{FRAC_PI_2, PI};
+use std::f32::consts::PI;
 
 use bevy::math::{Vec2, Vec3};
 
@@ -16,10 +16,10 @@ use super::noise::NoiseSheet;
 use super::params::{ClothError, ClothGrid, ClothParams, ClothWindModel};
 
 /// The paper's frame rate: Table 1's shifts are steps per frame at 50 fps.
-pub const PAPER_FPS: f32 = 50.0;
+pub(crate) const PAPER_FPS: f32 = 50.0;
 
 /// Most noise cells a cloth may have (frames × max(rows, 16) × 160): 4 M cells, 48 MiB.
-pub const MAX_NOISE_CELLS: usize = 1 << 22;
+pub(crate) const MAX_NOISE_CELLS: usize = 1 << 22;
 
 /// How the yarns sit in the cloth's local frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bevy::reflect::Reflect)]
@@ -37,13 +37,13 @@ pub enum ClothAttachment {
 /// `length` m runs at the wind's own speed: waves on flags travel at about the speed of the flow
 /// (Alben's simulations of light flags; Raynaud & Mulleners 2026 in a wind tunnel). For a 1.5 m
 /// flag this is Table 1's pairing: |v| = 2 in a gentle breeze (4.7 m/s), 4 in a moderate one.
-pub fn air_speed(steps: f32, length: f32) -> f32 {
+pub(crate) fn air_speed(steps: f32, length: f32) -> f32 {
     steps * PAPER_FPS * length / CELLS_PER_YARN as f32
 }
 
 /// Inverse of [`air_speed`]: the shift |v| (cells per paper frame) of noise that moves at
 /// `speed` m/s along a yarn of `length` m.
-pub fn steps_for_speed(speed: f32, length: f32) -> f32 {
+pub(crate) fn steps_for_speed(speed: f32, length: f32) -> f32 {
     let steps = speed * CELLS_PER_YARN as f32 / (PAPER_FPS * length.max(1e-6));
     if steps.is_finite() { steps } else { 0.0 }
 }
@@ -128,7 +128,7 @@ impl ClothSim {
         let noise_rows = grid.rows.max(16);
         let frames = match params.model {
             ClothWindModel::Frozen => 1,
-            ClothWindModel::NonFrozen { frames } => frames,
+            ClothWindModel::Evolving { frames } => frames,
         };
         // Checked before anything is allocated: the noise and its directions take 12 bytes a
         // cell.
@@ -211,7 +211,7 @@ impl ClothSim {
         self.along
     }
 
-    /// The air speed the cloth flaps in now, m/s (from the last step's |v|, [`air_speed`]).
+    /// The air speed the cloth flaps in now, m/s (from the last step's |v|, [`Self::speed_of_steps`]).
     pub fn air_speed(&self) -> f32 {
         air_speed(self.speed, self.grid.width)
     }
@@ -237,7 +237,7 @@ impl ClothSim {
 
     /// Rebuilds every node from the current shift. Each yarn k reads the directions of its
     /// noise row (k + the swirl's shift, offset by the twist) where the wind has moved them, and
-    /// the wind's strength U (from |v|, [`air_speed`]) shapes them:
+    /// the wind's strength U (from |v|, [`Self::speed_of_steps`]) shapes them:
     /// - near the pole the yarn leaves along the stream: the deviation from it grows from 0 at
     ///   the pole to full over the first 30 % of the yarn (the pole holds the cloth);
     /// - the deviation scales with √(U / U_ref), U_ref the parameters' reference speed (the
@@ -259,7 +259,7 @@ impl ClothSim {
     }
 
     /// [`ClothSim::rebuild_at`] on a grid `stride` times coarser (1 is the full grid; see
-    /// [`ClothLod`](super::ClothLod)): every `stride`-th yarn is traced, in segments `stride`
+    /// [`ClothLod`](super::component::ClothLod)): every `stride`-th yarn is traced, in segments `stride`
     /// times longer that read the noise at their middle, and the nodes between are placed
     /// evenly along them; the yarns between are interpolated, each moved so its pole-edge node
     /// is where eq. 8 puts it. The mesh keeps every node, so a change of stride changes no
@@ -290,7 +290,7 @@ impl ClothSim {
         let strength = Strength::new(self.air_speed(), self.params.reference_speed);
         let frame = match self.params.model {
             ClothWindModel::Frozen => 0.0,
-            ClothWindModel::NonFrozen { .. } => time * f64::from(PAPER_FPS),
+            ClothWindModel::Evolving { .. } => time * f64::from(PAPER_FPS),
         };
         let step = CELLS_PER_YARN as f64 / segments as f64;
         // A coarse segment reads the noise at its middle.
@@ -391,13 +391,26 @@ impl ClothSim {
     }
 }
 
-/// The angles of the pole edge's nodes in eq. 8: γ = π/2 and α_k = kπ/(n−1), so that the first
-/// and last nodes (the two fixed ends) stay on the pole.
-pub(crate) fn edge_angle(k: usize, rows: usize) -> (f32, f32) {
-    let alpha = if rows > 1 {
-        k as f32 * PI / (rows - 1) as f32
-    } else {
-        0.0
-    };
-    (FRAC_PI_2, alpha)
+/// Limits and constants of [`ClothSim`].
+impl ClothSim {
+    /// Most noise cells a cloth may have (frames × max(rows, 16) × 160): 4 M cells, 48 MiB.
+    pub const MAX_NOISE_CELLS: usize = MAX_NOISE_CELLS;
+
+    /// The paper's frame rate: Table 1's shifts are steps per frame at 50 fps.
+    pub const PAPER_FPS: f32 = PAPER_FPS;
+}
+
+/// The conversions between the paper's noise shift and the wind's speed.
+impl ClothSim {
+    /// The air speed, m/s, of noise shifting `steps` cells per paper frame along yarns `length`
+    /// m long (the inverse of [`Self::steps_for_speed`]).
+    pub fn speed_of_steps(steps: f32, length: f32) -> f32 {
+        air_speed(steps, length)
+    }
+
+    /// The shift |v|, cells per paper frame, of noise that moves at `speed` m/s along yarns
+    /// `length` m long: the cloth's waves then run at the wind's speed.
+    pub fn steps_for_speed(speed: f32, length: f32) -> f32 {
+        steps_for_speed(speed, length)
+    }
 }

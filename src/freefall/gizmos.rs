@@ -15,12 +15,14 @@ use bevy::reflect::Reflect;
 use bevy::transform::TransformSystems;
 use bevy::transform::components::GlobalTransform;
 
-use super::{FallState, FallingObject, PrimitiveMotion};
+use super::object::FallState;
+use super::object::FallingObject;
+use super::regime::PrimitiveMotion;
 
 /// Draws falling objects' trails when the [`FallGizmos`] gizmo group is enabled (off by
 /// default; part of [`WindfallDebugPlugin`](crate::WindfallDebugPlugin)). Costs nothing while
 /// disabled.
-pub struct FallGizmosPlugin;
+pub(crate) struct FallGizmosPlugin;
 
 impl Plugin for FallGizmosPlugin {
     fn build(&self, app: &mut App) {
@@ -74,13 +76,13 @@ impl Default for FallGizmos {
 /// drawn, and the fall time of the last one (a smaller time means a new fall: the trail starts
 /// afresh).
 #[derive(Component, Default, Debug)]
-pub struct FallTrail {
+pub(crate) struct FallTrail {
     points: VecDeque<(Vec3, Color)>,
     time: f32,
 }
 
 /// A colour per primitive motion (L1..L6), for paths and panels.
-pub fn motion_color(motion: PrimitiveMotion) -> Color {
+pub(crate) fn motion_color(motion: PrimitiveMotion) -> Color {
     match motion {
         PrimitiveMotion::SteadyDescent => Color::srgb(0.2, 0.2, 0.9),
         PrimitiveMotion::Fluttering => Color::srgb(0.1, 0.7, 0.2),
@@ -119,5 +121,12 @@ fn draw_fall_paths(
             trail.points.pop_front();
         }
         gizmos.linestrip_gradient(trail.points.iter().copied());
+    }
+}
+
+impl FallGizmos {
+    /// The colour of each primitive motion (L1..L6) in trails and panels.
+    pub fn motion_color(motion: PrimitiveMotion) -> Color {
+        motion_color(motion)
     }
 }

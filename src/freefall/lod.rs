@@ -6,10 +6,10 @@ use bevy::reflect::std_traits::ReflectDefault;
 
 use crate::lod::LodTiers;
 
-/// Levels of detail for a single [`FallingObject`](super::FallingObject): with a
+/// Levels of detail for a single [`FallingObject`](super::object::FallingObject): with a
 /// [`LodFocus`](crate::lod::LodFocus) on the camera, the object is stepped every fixed step
 /// within `near` m of it, every second step to `far`, every fourth beyond, over the whole time
-/// since its last step, exactly as a [`LeafCloud`](super::LeafCloud)'s leaves are. It follows
+/// since its last step, exactly as a [`LeafCloud`](super::cloud::LeafCloud)'s leaves are. It follows
 /// the same path (its pieces are sampled by time), reads the wind less often, moves smoothly
 /// between its steps, and eases back without a jump when it comes nearer. Without this
 /// component an object is stepped every fixed step.

@@ -67,7 +67,7 @@ pub struct MarkovChain {
 }
 
 /// Seconds of fall per chain step of the default chain and of [`MarkovChain::new`].
-pub const CHAIN_STEP: f32 = 0.25;
+pub(crate) const CHAIN_STEP: f32 = 0.25;
 
 impl Default for MarkovChain {
     /// Our default (the paper's Fig. 11 numbers are not in its text). Rows L1..L6:
@@ -82,7 +82,7 @@ impl Default for MarkovChain {
     /// | L5 TH | 0 | 0 | 0 | 0 | .80 | .20 |
     /// | L6 PS | 0 | 0 | 0 | 0 | 0 | 1 |
     ///
-    /// One step is [`CHAIN_STEP`] = 0.25 s: a release usually starts steady or fluttering, and a
+    /// One step is [`MarkovChain::STEP_SECONDS`](crate::freefall::MarkovChain::STEP_SECONDS) = 0.25 s: a release usually starts steady or fluttering, and a
     /// motion lasts 0.25 s / (1 − p_ii) on average (0.4 s steady, 0.8 s fluttering, 1 s
     /// tumbling, 1.25 s helix) before the next.
     fn default() -> Self {
@@ -194,7 +194,7 @@ impl MarkovChain {
     /// The chain an object with main motion `main` follows: states above `main` are out of
     /// reach (eq. 9 counts the motion classes of L1..L_k), so a step that would go past `main`
     /// goes to `main`, which then holds.
-    pub fn bounded(&self, main: PrimitiveMotion) -> BoundedChain {
+    pub(crate) fn bounded(&self, main: PrimitiveMotion) -> BoundedChain {
         let k = main.index();
         let collapse = |row: &[f32; 6]| {
             let mut out = [0.0f32; 6];
@@ -217,13 +217,14 @@ impl MarkovChain {
 
 /// Number of motion classes of a fall whose main motion is L_k (eq. 9): Σ_{i=1..k} C(k, i) =
 /// 2^k − 1, the non-empty increasing sequences of L1..L_k.
-pub fn motion_class_count(main: PrimitiveMotion) -> u32 {
+#[cfg(test)]
+pub(crate) fn motion_class_count(main: PrimitiveMotion) -> u32 {
     (1u32 << (main.index() + 1)) - 1
 }
 
 /// A [`MarkovChain`] limited to L1..main, with cumulative rows for sampling.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BoundedChain {
+pub(crate) struct BoundedChain {
     main: PrimitiveMotion,
     initial: [f32; 6],
     rows: [[f32; 6]; 6],
@@ -241,6 +242,7 @@ impl BoundedChain {
         draw(&self.initial, rng.uniform())
     }
 
+    #[cfg(test)]
     /// Draws the motion one chain step after `current` (never lower, never above `main`).
     pub fn next(&self, current: PrimitiveMotion, rng: &mut FallRng) -> PrimitiveMotion {
         let current = current.min(self.main);
@@ -308,4 +310,99 @@ fn check_row(row: Option<usize>, values: &[f32; 6]) -> Result<(), MarkovError> {
         return Err(MarkovError::RowSum { row, sum });
     }
     Ok(())
+}
+
+/// Limits and constants of [`MarkovChain`].
+impl MarkovChain {
+    /// Seconds of fall per chain step of the default chain and of [`MarkovChain::new`].
+    pub const STEP_SECONDS: f32 = CHAIN_STEP;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn markov_chain_matches_its_matrix() {
+        let chain = MarkovChain::default();
+        let bounded = chain.bounded(PrimitiveMotion::Spiral);
+        let mut rng = FallRng::new(11);
+        let mut counts = [[0u32; 6]; 6];
+        let mut state = bounded.start(&mut rng);
+        for i in 0..400_000 {
+            let next = bounded.next(state, &mut rng);
+            counts[state.index()][next.index()] += 1;
+            // Restart now and then so every row is visited.
+            state = if i % 8 == 7 {
+                PrimitiveMotion::from_index(i / 8 % 6)
+            } else {
+                next
+            };
+        }
+        for (i, row) in counts.iter().enumerate() {
+            let n: u32 = row.iter().sum();
+            assert!(n > 10_000, "row {i} visited {n} times");
+            for (j, &c) in row.iter().enumerate() {
+                let p = f64::from(chain.transitions()[i][j]);
+                let f = f64::from(c) / f64::from(n);
+                let sigma = (p * (1.0 - p) / f64::from(n)).sqrt();
+                assert!(
+                    (f - p).abs() <= 4.0 * sigma + 1e-9,
+                    "p[{i}][{j}] = {p}, seen {f}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn bounded_chain_collapses_the_motions_past_the_main_one() {
+        // Bounded at L3, the default chain's row L1 (.40 .30 .10 .10 .05 .05) becomes
+        // (.40 .30 .30): everything past L3 lands on L3, and L3 holds.
+        let bounded = MarkovChain::default().bounded(PrimitiveMotion::Chaotic);
+        let mut rng = FallRng::new(5);
+        let mut counts = [0u32; 6];
+        let n = 50_000;
+        for _ in 0..n {
+            counts[bounded
+                .next(PrimitiveMotion::SteadyDescent, &mut rng)
+                .index()] += 1;
+        }
+        let expected = [0.40, 0.30, 0.30, 0.0, 0.0, 0.0];
+        for (c, p) in counts.iter().zip(expected) {
+            let f = f64::from(*c) / f64::from(n);
+            assert!((f - p).abs() < 0.01, "{counts:?}");
+        }
+        for _ in 0..1000 {
+            assert_eq!(
+                bounded.next(PrimitiveMotion::Chaotic, &mut rng),
+                PrimitiveMotion::Chaotic
+            );
+        }
+        assert_eq!(motion_class_count(PrimitiveMotion::Chaotic), 7);
+    }
+
+    #[test]
+    fn a_piece_leaves_its_motion_at_the_rate_of_its_duration() {
+        // p_ii = 0.8 per 0.25 s step: a 0.1 s piece stays with 0.8^0.4, a 1 s piece with 0.8^4.
+        let chain = MarkovChain::default();
+        let bounded = chain.bounded(PrimitiveMotion::Spiral);
+        let p = f64::from(chain.transitions()[4][4]);
+        let mut rng = FallRng::new(17);
+        for seconds in [0.1f32, 0.25, 1.0] {
+            let n = 40_000;
+            let stayed = (0..n)
+                .filter(|_| {
+                    bounded.next_after(PrimitiveMotion::Helix, seconds, &mut rng)
+                        == PrimitiveMotion::Helix
+                })
+                .count();
+            let expected = p.powf(f64::from(seconds) / f64::from(MarkovChain::STEP_SECONDS));
+            let f = stayed as f64 / f64::from(n);
+            let sigma = (expected * (1.0 - expected) / f64::from(n)).sqrt();
+            assert!(
+                (f - expected).abs() < 5.0 * sigma,
+                "{seconds} s: {f} vs {expected}"
+            );
+        }
+    }
 }

@@ -4,7 +4,7 @@
 //! | step | what | source |
 //! |---|---|---|
 //! | regime | Re = U L / ν, I*, U = √((ρ_s/ρ_f − 1) g b) | eq. 1–3 |
-//! | phase diagram | (Re, I*) → main motion L1..L6 ([`PHASE_DIAGRAM`]) | §2.1, Fig. 3 |
+//! | phase diagram | (Re, I*) → main motion L1..L6 ([`PrimitiveMotion::classify`]) | §2.1, Fig. 3 |
 //! | database | swings of eq. 5 cut at turning points, k-means on feature vectors, angles from eq. 4 by RK4 | §2.2 |
 //! | search tree | glide left / right: fluttering, chaotic (r ∈ [1/10, 10]), tumbling | §2.3.1, Fig. 7 |
 //! | unified function | steady descent, helix (eight-petal rose), spiral (radius A₀) | eq. 6 |
@@ -23,7 +23,7 @@
 //! | U | m/s |
 //! | Ω | rad/s |
 //!
-//! The math is in plain types ([`regime()`], [`TrajectoryDatabase`], [`FallPath`], [`ode`]);
+//! The math is in plain types ([`Regime::new`], [`TrajectoryDatabase`], [`FallPath`], [`ode`]);
 //! [`FreeFallPlugin`] moves every [`FallingObject`] on the fixed timestep.
 
 pub mod cloud;
@@ -34,6 +34,7 @@ mod lod;
 mod markov;
 mod model;
 mod motion;
+mod object;
 pub mod ode;
 mod path;
 mod piece;
@@ -45,29 +46,21 @@ mod release;
 mod tiers;
 mod tilt;
 
-pub use cloud::{
-    CloudLod, CloudRegion, LeafCloud, LeafCloudInvalid, LeafCloudPlugin, LeafCloudState, LodFocus,
-    LodView,
-};
-pub use database::{
-    CANDIDATES, DatabaseConfig, FEATURES, Feature, MAX_DATABASE_PARAMETER, SEGMENT_SAMPLES,
-    Segment, TrajectoryDatabase,
-};
+pub use cloud::{CloudRegion, LeafCloud, LeafCloudInvalid, LeafCloudPlugin, LeafCloudState};
+pub use database::{DatabaseConfig, TrajectoryDatabase};
 #[cfg(feature = "gizmos")]
-pub use gizmos::{FallGizmos, FallGizmosPlugin, FallTrail, motion_color};
+pub use gizmos::FallGizmos;
+#[cfg(feature = "gizmos")]
+pub(crate) use gizmos::FallGizmosPlugin;
 pub use lod::FallLod;
-pub use markov::{BoundedChain, CHAIN_STEP, MarkovChain, MarkovError, motion_class_count};
+pub use markov::{MarkovChain, MarkovError};
 pub use model::FallModel;
-pub use motion::{CHAOTIC_MIN_TIME, FallScales, Glide, STROUHAL};
+pub use motion::FallScales;
 pub use path::{FallPath, StepOutcome, WindTilt};
-pub use piece::{Piece, SwingChoice};
-pub use plugin::{
-    FallState, FallingObject, FallingObjectInvalid, FreeFallPlugin, FreeFallSettings, Landed,
-};
+
+pub use object::{FallState, FallingObject, FallingObjectInvalid, FreeFallSettings, Landed};
+pub use plugin::FreeFallPlugin;
 pub use presets::FallPreset;
 pub use random::FallRng;
-pub use regime::{
-    Fluid, FreeFallError, MAX_DENSITY_RATIO, MAX_SIZE, MIN_SIZE, MIN_VISCOSITY, PHASE_DIAGRAM,
-    PhaseRegion, PrimitiveMotion, Regime, Shape, classify, regime,
-};
-pub use release::{FallRelease, LIFT_OFF_FACTOR, MAX_RELEASE_SPEED, MAX_STEP};
+pub use regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape};
+pub use release::FallRelease;

@@ -11,7 +11,7 @@ use super::markov::{BoundedChain, MarkovChain};
 use super::regime::PrimitiveMotion;
 
 /// The trajectory database and the Markov chain, bounded once per main motion (eq. 9) so that a
-/// [`FallPath`](super::FallPath) only carries its main motion. A resource of the
+/// [`FallPath`](super::path::FallPath) only carries its main motion. A resource of the
 /// [`FreeFallPlugin`](super::FreeFallPlugin); replace it to use another database or chain.
 ///
 /// # Example
@@ -69,13 +69,8 @@ impl FallModel {
         self.bounded = PrimitiveMotion::ALL.map(|main| Arc::new(chain.bounded(main)));
     }
 
-    /// The chain limited to L1..`main`.
-    pub fn bounded(&self, main: PrimitiveMotion) -> &BoundedChain {
-        &self.bounded[main.index()]
-    }
-
-    /// The chain limited to L1..`main`, shared (what a [`FallPath`](super::FallPath) holds).
-    pub fn bounded_shared(&self, main: PrimitiveMotion) -> Arc<BoundedChain> {
+    /// The chain limited to L1..`main`, shared (what a [`FallPath`](super::path::FallPath) holds).
+    pub(crate) fn bounded_shared(&self, main: PrimitiveMotion) -> Arc<BoundedChain> {
         Arc::clone(&self.bounded[main.index()])
     }
 }

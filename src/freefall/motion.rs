@@ -85,13 +85,13 @@ pub const CHAOTIC_SCALE: (f32, f32) = (0.1, 10.0);
 
 /// The shortest chaotic swing, in swings: below it r shrinks the glide, not the duration.
 /// A half-turn takes at least one swing.
-pub const CHAOTIC_MIN_TIME: f32 = 0.5;
+pub(crate) const CHAOTIC_MIN_TIME: f32 = 0.5;
 
 /// The Strouhal number St = f a / U of the swings: f the oscillation frequency (one period is
 /// two swings), a the chord, U the descent speed of eq. 3. Measured fluttering of falling disks
 /// and plates lies at St ≈ 0.1–0.25 (see [`FallScales::swing_rate`]); 1/(2π) ≈ 0.16 makes
 /// Ω = U / a, eq. 8's Ω ∼ √(b/a) in units of √(g/a).
-pub const STROUHAL: f32 = 0.159_154_94;
+pub(crate) const STROUHAL: f32 = 0.159_154_94;
 
 /// The sizes of one fall.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,7 +101,7 @@ pub struct FallScales {
     /// Ω, rad/s: the swing rate, Ω = 2π St U / a. One swing (turning point to turning point)
     /// takes π / Ω; a flutter period, two swings, has frequency f = St U / a. Eq. 8 gives only
     /// Ω ∼ √(b/a) (in units of √(g/a)); U / a = √((ρ_s/ρ_f − 1) b/a) √(g/a) has that form, and
-    /// the Strouhal number [`STROUHAL`] fixes the constant from measured falls.
+    /// the Strouhal number [`FallScales::STROUHAL`](crate::freefall::FallScales::STROUHAL) fixes the constant from measured falls.
     pub swing_rate: f32,
     /// L, m.
     pub length: f32,
@@ -128,7 +128,7 @@ impl FallScales {
     /// A₀ with the Gaussian spread of §2.3.2: the deviations are distributed as
     /// A_i e^(−((r − A_i)/σ_i)²), a normal law of mean A_i and standard deviation σ_i/√2; one
     /// draw per motion of a fall, kept within [0.2, 2.5] A_i.
-    pub fn spread_amplitude(&self, motion: PrimitiveMotion, rng: &mut FallRng) -> f32 {
+    pub(crate) fn spread_amplitude(&self, motion: PrimitiveMotion, rng: &mut FallRng) -> f32 {
         let shape = MOTION_SHAPES[motion.index()];
         let factor = 1.0 + shape.spread * std::f32::consts::FRAC_1_SQRT_2 * rng.normal();
         self.amplitude(motion) * factor.clamp(0.2, 2.5)
@@ -138,7 +138,7 @@ impl FallScales {
     /// `swings` swing times: the feature vector it should have, in the database's units (length
     /// U/Ω times `swings`): glide, drop −π, a medium modulation, and an angle half-range that
     /// grows with I* (plates near the tumbling boundary swing wider).
-    pub fn swing_key(&self, glide: f32, swings: f32) -> Feature {
+    pub(crate) fn swing_key(&self, glide: f32, swings: f32) -> Feature {
         let unit = (self.descent_speed / self.swing_rate * swings).max(1e-12);
         let inertia = if self.inertia > 0.0 {
             self.inertia
@@ -192,7 +192,7 @@ impl FallScales {
 
 /// Which way a swing glides along the heading (the search tree's two children, Fig. 7).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Glide {
+pub(crate) enum Glide {
     /// gl.
     Left,
     /// gr.
@@ -235,6 +235,15 @@ pub fn next_glide(motion: PrimitiveMotion, previous: Glide, rng: &mut FallRng) -
         }
         _ => (previous.flip(), 1.0),
     }
+}
+
+/// Limits and constants of [`FallScales`].
+impl FallScales {
+    /// The Strouhal number St = f a / U of the swings: f the oscillation frequency (one period is
+    /// two swings), a the chord, U the descent speed of eq. 3. Measured fluttering of falling disks
+    /// and plates lies at St ≈ 0.1–0.25 (see [`FallScales::swing_rate`]); 1/(2π) ≈ 0.16 makes
+    /// Ω = U / a, eq. 8's Ω ∼ √(b/a) in units of √(g/a).
+    pub const STROUHAL: f32 = STROUHAL;
 }
 
 #[cfg(test)]

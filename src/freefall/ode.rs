@@ -17,6 +17,7 @@
 //! and gravity do work: the speed stays below max(V₀, g / A∥).
 
 use super::regime::FreeFallError;
+use crate::error::InvalidValue;
 
 /// Parameters of eq. 4 (SI units).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -164,13 +165,13 @@ pub enum Integrator {
 }
 
 /// Largest dt × [`TanabeKaneko::stiffness`] an explicit substep may take.
-pub const STABLE_RATE_STEP: f64 = 1.0;
-/// Most substeps [`step`] takes before it switches to [`Integrator::SemiImplicit`].
-pub const MAX_SUBSTEPS: u32 = 256;
+pub(crate) const STABLE_RATE_STEP: f64 = 1.0;
+/// Most substeps [`Self::step`] takes before it switches to [`Integrator::SemiImplicit`].
+pub(crate) const MAX_SUBSTEPS: u32 = 256;
 
 /// Advances `state` by `dt` with `method` in substeps sized so that h × stiffness ≤
 /// [`STABLE_RATE_STEP`] at the state each substep starts from (the speed, and so the lift and
-/// torque rates, change within a step). After [`MAX_SUBSTEPS`] the rest of the step is taken in
+/// torque rates, change within a step). After [`TanabeKaneko::MAX_SUBSTEPS`](crate::freefall::ode::TanabeKaneko::MAX_SUBSTEPS) the rest of the step is taken in
 /// one [`Integrator::SemiImplicit`] substep, which is stable for any damping. Non-finite `dt` or
 /// `dt ≤ 0` leaves the state unchanged.
 ///
@@ -178,7 +179,12 @@ pub const MAX_SUBSTEPS: u32 = 256;
 /// and explicit stages that straddle the switch add energy the ODE cannot (its lift is
 /// perpendicular to the velocity); weakly damped, strongly lifted plates would otherwise speed
 /// up without bound. The limit never binds on an accurate solution.
-pub fn step(params: &TanabeKaneko, state: OdeState, dt: f64, method: Integrator) -> OdeState {
+pub(crate) fn step(
+    params: &TanabeKaneko,
+    state: OdeState,
+    dt: f64,
+    method: Integrator,
+) -> OdeState {
     if !(dt.is_finite() && dt > 0.0) {
         return state;
     }
@@ -204,7 +210,12 @@ pub fn step(params: &TanabeKaneko, state: OdeState, dt: f64, method: Integrator)
 /// Caps the speed of `next` at what eq. 4 allows after `h` from `previous`: only damping
 /// (≥ A_min = min(A⊥, A∥)) and gravity do work, so |v| ≤ g/A + (|v₀| − g/A) e^(−A h) above the
 /// terminal speed g/A, ≤ g/A below it, and ≤ |v₀| + g h in any case.
-pub fn speed_limit(params: &TanabeKaneko, previous: &OdeState, next: OdeState, h: f64) -> OdeState {
+pub(crate) fn speed_limit(
+    params: &TanabeKaneko,
+    previous: &OdeState,
+    next: OdeState,
+    h: f64,
+) -> OdeState {
     let v0 = previous.speed();
     let g = params.gravity.abs();
     let damping = params.a_perp.min(params.a_par).max(0.0);
@@ -232,7 +243,12 @@ pub fn speed_limit(params: &TanabeKaneko, previous: &OdeState, next: OdeState, h
 }
 
 /// One step of size `h`, no splitting.
-pub fn single_step(params: &TanabeKaneko, s: &OdeState, h: f64, method: Integrator) -> OdeState {
+pub(crate) fn single_step(
+    params: &TanabeKaneko,
+    s: &OdeState,
+    h: f64,
+    method: Integrator,
+) -> OdeState {
     match method {
         Integrator::Euler => s.axpy(h, &params.derivative(s)),
         Integrator::Midpoint => {
@@ -313,27 +329,29 @@ fn semi_implicit(params: &TanabeKaneko, s: &OdeState, h: f64) -> OdeState {
     }
 }
 
-/// Most steps [`trajectory`] takes: 2^22 states, 192 MiB.
-pub const MAX_TRAJECTORY_STEPS: usize = 1 << 22;
+/// Most steps [`Self::trajectory`] takes: 2^22 states, 192 MiB.
+pub(crate) const MAX_TRAJECTORY_STEPS: usize = 1 << 22;
 
 /// Integrates from `state` for `duration` in steps of `dt` and returns every state, the
 /// first included.
 ///
 /// # Errors
 /// `dt` not finite and > 0, `duration` not finite and ≥ 0, or more than
-/// [`MAX_TRAJECTORY_STEPS`] steps (checked before anything is allocated; the field named is
+/// [`TanabeKaneko::MAX_TRAJECTORY_STEPS`](crate::freefall::ode::TanabeKaneko::MAX_TRAJECTORY_STEPS) steps (checked before anything is allocated; the field named is
 /// `dt`).
-pub fn trajectory(
+pub(crate) fn trajectory(
     params: &TanabeKaneko,
     state: OdeState,
     dt: f64,
     duration: f64,
     method: Integrator,
 ) -> Result<Vec<OdeState>, FreeFallError> {
-    let invalid = |field, value: f64, reason| FreeFallError::Invalid {
-        field,
-        value: value as f32,
-        reason,
+    let invalid = |field, value: f64, reason| {
+        FreeFallError::Invalid(InvalidValue {
+            field,
+            value: value as f32,
+            reason,
+        })
     };
     if !(dt.is_finite() && dt > 0.0) {
         return Err(invalid("dt", dt, "must be finite and > 0"));
@@ -354,4 +372,41 @@ pub fn trajectory(
         out.push(s);
     }
     Ok(out)
+}
+
+/// Limits and constants of [`TanabeKaneko`].
+impl TanabeKaneko {
+    /// Most substeps [`TanabeKaneko::step`] takes before it switches to [`Integrator::SemiImplicit`].
+    pub const MAX_SUBSTEPS: u32 = MAX_SUBSTEPS;
+
+    /// Most steps [`TanabeKaneko::trajectory`] takes: 2^22 states, 192 MiB.
+    pub const MAX_TRAJECTORY_STEPS: usize = MAX_TRAJECTORY_STEPS;
+}
+
+/// Integrating the model.
+impl TanabeKaneko {
+    /// One step of `h` by `method` (no sub-steps, no limits): what [`Self::step`] divides
+    /// its step into.
+    pub fn single_step(&self, state: &OdeState, h: f64, method: Integrator) -> OdeState {
+        single_step(self, state, h, method)
+    }
+
+    /// `state` advanced by `dt`, in sub-steps the method keeps stable.
+    pub fn step(&self, state: OdeState, dt: f64, method: Integrator) -> OdeState {
+        step(self, state, dt, method)
+    }
+
+    /// Every state from `state` on, `dt` apart, for `duration`.
+    ///
+    /// # Errors
+    /// `dt` not finite and > 0, `duration` not finite and ≥ 0, or too many steps (named).
+    pub fn trajectory(
+        &self,
+        state: OdeState,
+        dt: f64,
+        duration: f64,
+        method: Integrator,
+    ) -> Result<Vec<OdeState>, FreeFallError> {
+        trajectory(self, state, dt, duration, method)
+    }
 }

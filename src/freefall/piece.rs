@@ -19,7 +19,7 @@ use super::regime::PrimitiveMotion;
 
 /// A stretch of still-fluid motion, evaluated relative to its start.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Piece {
+pub(crate) enum Piece {
     /// A database segment along the heading.
     Swing {
         /// Database index.
@@ -65,7 +65,7 @@ pub enum Piece {
 /// What a swing needs besides its database segment: the search tree's choice and the plate's
 /// state.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SwingChoice {
+pub(crate) struct SwingChoice {
     /// The child of the search tree: which way it glides.
     pub glide: Glide,
     /// Whether the glide keeps the previous swing's side (a half-turn) rather than reversing.
@@ -333,6 +333,63 @@ mod tests {
     use bevy::math::Vec2;
 
     use super::*;
+    use crate::freefall::database::TrajectoryDatabase;
+    use crate::freefall::motion::Glide;
+    use crate::freefall::object::FallingObject;
+    use crate::freefall::random::FallRng;
+    use crate::freefall::regime::PrimitiveMotion;
+
+    #[test]
+    fn two_picks_of_the_search_tree_give_different_swings() {
+        let db = TrajectoryDatabase::default();
+        let object = FallingObject::default();
+        let scales = object.scales(&object.regime().unwrap());
+        let mut rng = FallRng::new(1);
+        let choice = SwingChoice {
+            glide: Glide::Right,
+            same_side: false,
+            r: 1.0,
+            theta: 0.0,
+            survival: 1.0,
+        };
+        // What a swing shows: its sideways glide, the plate's turn, and how unevenly it drops.
+        let measure = |segment: u32| {
+            let piece = Piece::swing(&db, &scales, segment, choice);
+            let d = piece.duration();
+            let end = piece.offset(&db, d);
+            let turn = piece.tilt(&db, 0.0).angle_between(piece.tilt(&db, d));
+            let drops: Vec<f32> = (0..8)
+                .map(|i| {
+                    let (a, b) = (i as f32 * d / 8.0, (i + 1) as f32 * d / 8.0);
+                    piece.offset(&db, a).y - piece.offset(&db, b).y
+                })
+                .collect();
+            let unevenness = drops.iter().fold(0.0f32, |m, x| m.max(*x))
+                / drops.iter().fold(f32::INFINITY, |m, x| m.min(*x));
+            (end.x, turn, unevenness)
+        };
+        // Narrow and wide keys find different clusters: glides differ severalfold.
+        let a0 = scales.amplitude(PrimitiveMotion::Fluttering);
+        let narrow = db.find(&scales.swing_key(0.4 * a0, 1.0), &mut rng);
+        let wide = db.find(&scales.swing_key(10.0 * a0, 1.0), &mut rng);
+        let (a, b) = (measure(narrow), measure(wide));
+        assert!(b.0 > 4.0 * a.0, "glides {} and {}", a.0, b.0);
+        // Within one cluster, members differ in what P¹ − P⁰ does not show: the plate's turn or
+        // the descent's modulation.
+        let cluster = db.nearest_cluster(&scales.swing_key(2.0 * a0, 1.0));
+        let members: Vec<_> = db.members()[cluster].iter().map(|&s| measure(s)).collect();
+        let spread = |f: fn(&(f32, f32, f32)) -> f32| {
+            let lo = members.iter().map(f).fold(f32::INFINITY, f32::min);
+            let hi = members.iter().map(f).fold(0.0f32, f32::max);
+            hi / lo
+        };
+        assert!(
+            spread(|m| m.1) > 1.3 || spread(|m| m.2) > 1.3,
+            "turns ×{} unevenness ×{}",
+            spread(|m| m.1),
+            spread(|m| m.2)
+        );
+    }
 
     #[test]
     fn curve_velocity_is_the_derivative_of_eq_6() {

@@ -21,7 +21,7 @@
 use bevy::reflect::Reflect;
 
 use super::markov::MarkovChain;
-use super::plugin::FallingObject;
+use super::object::FallingObject;
 use super::regime::{Fluid, PrimitiveMotion, Shape};
 
 /// A named object: shape, density, fluid, main motion and Markov chain.

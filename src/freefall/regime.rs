@@ -1,6 +1,8 @@
 //! From a physical object to its main primitive motion: Re (eq. 1, 3), I* (eq. 2) and the
 //! (Re, I*) phase diagram of §2.1.
 
+use crate::error::InvalidValue;
+use crate::guard::{MAX_SIZE, MIN_SIZE};
 use bevy::reflect::Reflect;
 use thiserror::Error;
 
@@ -59,7 +61,7 @@ impl PrimitiveMotion {
 /// One region of the phase diagram: `motion` where `re_min ≤ Re < re_max` and
 /// `inertia_min ≤ I* < inertia_max`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PhaseRegion {
+pub(crate) struct PhaseRegion {
     /// The motion of this region.
     pub motion: PrimitiveMotion,
     /// Lowest Reynolds number (inclusive).
@@ -80,7 +82,7 @@ pub struct PhaseRegion {
 /// The boundaries are rounded values of the regions the literature reports, placed so that the
 /// paper's three objects of §5 (Fig. 15) fall where the paper says: coin (3.55e3, 1e-2)
 /// fluttering, paper ellipse (6.8e3, 2.2e-3) spiral, leaf (1.2e4, 6.3e-3) helix.
-pub const PHASE_DIAGRAM: [PhaseRegion; 5] = [
+pub(crate) const PHASE_DIAGRAM: [PhaseRegion; 5] = [
     PhaseRegion {
         motion: PrimitiveMotion::SteadyDescent,
         re_min: 0.0,
@@ -125,7 +127,7 @@ pub const PHASE_DIAGRAM: [PhaseRegion; 5] = [
 
 /// The main primitive motion of an object with Reynolds number `reynolds` and dimensionless
 /// moment of inertia `inertia`, from [`PHASE_DIAGRAM`]. NaN or negative values count as 0.
-pub fn classify(reynolds: f32, inertia: f32) -> PrimitiveMotion {
+pub(crate) fn classify(reynolds: f32, inertia: f32) -> PrimitiveMotion {
     let re = if reynolds > 0.0 { reynolds } else { 0.0 };
     let i = if inertia > 0.0 { inertia } else { 0.0 };
     PHASE_DIAGRAM
@@ -221,15 +223,8 @@ impl Shape {
 #[derive(Clone, Copy, Debug, PartialEq, Error, Reflect)]
 pub enum FreeFallError {
     /// A number outside its valid range.
-    #[error("`{field}` = {value}: {reason}")]
-    Invalid {
-        /// The field's name.
-        field: &'static str,
-        /// The rejected value.
-        value: f32,
-        /// What it must be.
-        reason: &'static str,
-    },
+    #[error(transparent)]
+    Invalid(#[from] InvalidValue),
     /// ρ_s ≤ ρ_f: eq. 3 gives no descent velocity (the object floats or hovers).
     #[error(
         "`density` = {density} kg/m³ is not above the fluid's {fluid_density} kg/m³: it does not fall"
@@ -246,21 +241,16 @@ impl FreeFallError {
     /// Name of the offending field (`"shape.thickness"`, `"density"`, ...).
     pub fn field(&self) -> &'static str {
         match self {
-            Self::Invalid { field, .. } => field,
+            Self::Invalid(InvalidValue { field, .. }) => field,
             Self::LighterThanFluid { .. } => "density",
         }
     }
 }
 
-/// Largest accepted size, m: far beyond any use, small enough that every derived number stays
-/// finite in f32.
-pub const MAX_SIZE: f32 = 1.0e3;
-/// Smallest accepted size, m (0.1 µm).
-pub const MIN_SIZE: f32 = 1.0e-7;
 /// Smallest accepted kinematic viscosity, m²/s.
-pub const MIN_VISCOSITY: f32 = 1.0e-9;
+pub(crate) const MIN_VISCOSITY: f32 = 1.0e-9;
 /// Largest accepted ρ_s / ρ_f.
-pub const MAX_DENSITY_RATIO: f32 = 1.0e6;
+pub(crate) const MAX_DENSITY_RATIO: f32 = 1.0e6;
 
 /// Everything §2.1 derives from the inputs. Computed in f64, stored in f32.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -288,7 +278,7 @@ pub struct Regime {
 ///   ρ_s π L a b · a²/64, so I* = π ρ_s b L / (64 ρ_f a²), which is the disk's at L = a.
 ///
 /// U = √((ρ_s/ρ_f − 1) g b) (eq. 3) and Re = U L / ν (eq. 1).
-pub fn regime(
+pub(crate) fn regime(
     shape: &Shape,
     density: f32,
     fluid: &Fluid,
@@ -371,11 +361,11 @@ pub fn regime(
 }
 
 fn invalid(field: &'static str, value: f32, reason: &'static str) -> FreeFallError {
-    FreeFallError::Invalid {
+    FreeFallError::Invalid(InvalidValue {
         field,
         value,
         reason,
-    }
+    })
 }
 
 fn positive(field: &'static str, value: f32, max: f32) -> Result<(), FreeFallError> {
@@ -387,6 +377,49 @@ fn positive(field: &'static str, value: f32, max: f32) -> Result<(), FreeFallErr
             value,
             "must be finite, > 0 and within the documented maximum",
         ))
+    }
+}
+
+/// Limits and constants of [`Fluid`].
+impl Fluid {
+    /// Largest accepted ρ_s / ρ_f.
+    pub const MAX_DENSITY_RATIO: f32 = MAX_DENSITY_RATIO;
+
+    /// Smallest accepted kinematic viscosity, m²/s.
+    pub const MIN_VISCOSITY: f32 = MIN_VISCOSITY;
+}
+
+/// Limits and constants of [`Shape`].
+impl Shape {
+    /// Largest accepted size, m: far beyond any use, small enough that every derived number stays
+    /// finite in f32.
+    pub const MAX_SIZE: f32 = MAX_SIZE;
+
+    /// Smallest accepted size, m (0.1 µm).
+    pub const MIN_SIZE: f32 = MIN_SIZE;
+}
+
+impl PrimitiveMotion {
+    /// The region of the phase diagram (Fig. 2 of the free-fall paper) that Re and I* fall in.
+    pub fn classify(reynolds: f32, inertia: f32) -> Self {
+        classify(reynolds, inertia)
+    }
+}
+
+impl Regime {
+    /// Re, I*, U and the main motion of a plate of `shape` and `density` in `fluid` under
+    /// `gravity` (eq. 1–3 and Fig. 2 of the free-fall paper).
+    ///
+    /// # Errors
+    /// A size, density, viscosity or gravity out of range, named; a plate no denser than the
+    /// fluid.
+    pub fn new(
+        shape: &Shape,
+        density: f32,
+        fluid: &Fluid,
+        gravity: f32,
+    ) -> Result<Self, FreeFallError> {
+        regime(shape, density, fluid, gravity)
     }
 }
 

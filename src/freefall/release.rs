@@ -1,5 +1,6 @@
 //! Where and how a fall starts ([`FallRelease`]) and the bounds a fall keeps to.
 
+use crate::error::InvalidValue;
 use bevy::math::{Quat, Vec3};
 
 use super::regime::FreeFallError;
@@ -26,15 +27,15 @@ pub struct FallRelease {
 /// or a blast; the paper's coin in air (U ≈ 5.7 m/s) a gale. Near the ground the log law's mean
 /// wind is small (zero below the roughness length), so it is mostly gusts and local sources
 /// ([`WindSource`](crate::wind::WindSource)) that lift things.
-pub const LIFT_OFF_FACTOR: f32 = 3.0;
+pub(crate) const LIFT_OFF_FACTOR: f32 = 3.0;
 /// How far above the ground a lifted object starts, m.
 pub(super) const LIFT_OFF_HOP: f32 = 0.01;
 
-/// Longest step [`FallPath::advance`](super::FallPath::advance) takes, s; a longer one is cut to it.
-pub const MAX_STEP: f32 = 60.0;
+/// Longest step [`FallPath::advance`](super::path::FallPath::advance) takes, s; a longer one is cut to it.
+pub(crate) const MAX_STEP: f32 = 60.0;
 
 /// Largest speed, m/s, a fall may be released with (and the largest wind it feels).
-pub const MAX_RELEASE_SPEED: f32 = 1.0e4;
+pub(crate) const MAX_RELEASE_SPEED: f32 = 1.0e4;
 
 impl FallRelease {
     /// Let go at rest at `position`, flat, with a heading from the seed.
@@ -48,36 +49,38 @@ impl FallRelease {
     }
 
     /// Checks that a fall can start here: `position` and `ground` finite and within
-    /// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) (or `ground` = −∞: no ground), `rotation`
+    /// ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE) (or `ground` = −∞: no ground), `rotation`
     /// (if any) finite and not zero
-    /// (any length: it is normalised), `velocity` finite and within [`MAX_RELEASE_SPEED`].
+    /// (any length: it is normalised), `velocity` finite and within [`FallRelease::MAX_SPEED`](crate::freefall::FallRelease::MAX_SPEED).
     /// The fields are named `release.position`, ... ; the [`FreeFallPlugin`] releases from the
     /// entity's `Transform` and [`FreeFallSettings::ground_height`].
     ///
     /// [`FreeFallPlugin`]: super::FreeFallPlugin
-    /// [`FreeFallSettings::ground_height`]: super::FreeFallSettings::ground_height
+    /// [`FreeFallSettings::ground_height`]: super::object::FreeFallSettings::ground_height
     pub fn validate(&self) -> Result<(), FreeFallError> {
-        let invalid = |field, value, reason| FreeFallError::Invalid {
-            field,
-            value,
-            reason,
+        let invalid = |field, value, reason| {
+            FreeFallError::Invalid(InvalidValue {
+                field,
+                value,
+                reason,
+            })
         };
         if let Some(value) = crate::guard::bad_position(self.position) {
             return Err(invalid(
                 "release.position",
                 value,
-                "must be finite and within ±1e7 m",
+                crate::guard::POSITION_REASON,
             ));
         }
         // −∞ is "no ground": the fall never ends.
         if self.ground.is_nan()
-            || self.ground > crate::MAX_COORDINATE
-            || (self.ground.is_finite() && self.ground < -crate::MAX_COORDINATE)
+            || self.ground > crate::guard::MAX_COORDINATE
+            || (self.ground.is_finite() && self.ground < -crate::guard::MAX_COORDINATE)
         {
             return Err(invalid(
                 "release.ground",
                 self.ground,
-                "must be within ±1e7 m, or −∞ for no ground",
+                crate::guard::GROUND_REASON,
             ));
         }
         if let Some(q) = self.rotation
@@ -99,4 +102,22 @@ impl FallRelease {
         }
         Ok(())
     }
+}
+
+/// Limits and constants of [`FallRelease`].
+impl FallRelease {
+    /// A resting object is lifted again when the wind where it lies is faster than this many times
+    /// its descent speed U (eq. 3). A flat plate on the ground meets the flow at a small angle
+    /// (C_L ≈ 0.2); its lift ½ ρ_f C_L A |w|² beats its weight ρ_s A b g when
+    /// |w|² > 2 ρ_s b g / (ρ_f C_L) ≈ 10 U², so |w| > 3.2 U. A leaf (U ≈ 1 m/s) needs a strong gust
+    /// or a blast; the paper's coin in air (U ≈ 5.7 m/s) a gale. Near the ground the log law's mean
+    /// wind is small (zero below the roughness length), so it is mostly gusts and local sources
+    /// ([`WindSource`](crate::wind::WindSource)) that lift things.
+    pub const LIFT_OFF_FACTOR: f32 = LIFT_OFF_FACTOR;
+
+    /// Largest speed, m/s, a fall may be released with (and the largest wind it feels).
+    pub const MAX_SPEED: f32 = MAX_RELEASE_SPEED;
+
+    /// Longest step [`FallPath::advance`](super::path::FallPath::advance) takes, s; a longer one is cut to it.
+    pub const MAX_STEP: f32 = MAX_STEP;
 }

@@ -1,5 +1,5 @@
 //! Stepping a fall less often without a pop: what a cloud's leaves and a single object with
-//! [`FallLod`](super::FallLod) share. Pure math: no ECS.
+//! [`FallLod`](super::lod::FallLod) share. Pure math: no ECS.
 //!
 //! A fall in tier n (see [`LodTiers`](crate::lod::LodTiers)) is advanced every n-th fixed step
 //! over the whole time since its last step, so it follows the same path (pieces are sampled by

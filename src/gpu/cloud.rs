@@ -32,13 +32,13 @@ use crate::freefall::{LeafCloud, LeafCloudState, Shape};
 pub type LeafCloudMaterial = ExtendedMaterial<StandardMaterial, CloudPoses>;
 
 /// Bytes of one leaf's pose: position and scale, then the rotation, as 8 × f32.
-pub const POSE_BYTES: usize = 32;
+pub(crate) const POSE_BYTES: usize = 32;
 
 /// The material extension: the buffer of poses.
 #[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
 pub struct CloudPoses {
     /// `count` × (position.xyz, scale, rotation.xyzw), f32.
-    #[storage(100, read_only, visibility(vertex))]
+    #[storage(103, read_only, visibility(vertex))]
     #[reflect(ignore)]
     pub poses: Handle<ShaderBuffer>,
 }
@@ -89,7 +89,7 @@ impl Default for LeafCloudLook {
 
 /// What the plugin made for a cloud: its pose buffer and what its mesh was built for.
 #[derive(Component, Clone, Debug)]
-pub struct LeafCloudVisual {
+pub(crate) struct LeafCloudVisual {
     /// The poses ([`CloudPoses::poses`]).
     pub poses: Handle<ShaderBuffer>,
     /// Leaves drawn.
@@ -99,13 +99,13 @@ pub struct LeafCloudVisual {
 }
 
 /// Draws every [`LeafCloud`]: gives it a mesh and a [`LeafCloudMaterial`] and writes its poses
-/// each frame, after [`WindfallSystems::WriteBack`](crate::WindfallSystems::WriteBack) posed
+/// each frame, after [`WindfallSystems::WriteBack`](crate::schedule::WindfallSystems::WriteBack) posed
 /// them. Add it after `DefaultPlugins`.
 ///
 /// The mesh holds `count` copies of the leaf's outline at the origin, each vertex tagged with its
 /// leaf's index (the second UV set) and coloured from the cloud's [`LeafCloudLook`]; the vertex
 /// shader moves each copy to its leaf's pose, read from a [`ShaderBuffer`] of
-/// [`POSE_BYTES`] a leaf written in place. One entity, one mesh, one material and one draw call
+/// 32 bytes a leaf (position and rotation) written in place. One entity, one mesh, one material and one draw call
 /// per cloud. The mesh is rebuilt when the count, the shape or the look changes. Leaves cast no
 /// shadows, and the cloud is never frustum-culled as a whole.
 ///
@@ -130,6 +130,7 @@ pub struct LeafCloudRenderPlugin;
 
 impl Plugin for LeafCloudRenderPlugin {
     fn build(&self, app: &mut App) {
+        bevy::shader::load_shader_library!(app, "math.wgsl");
         bevy::asset::embedded_asset!(app, "cloud.wgsl");
         app.register_type::<LeafCloudLook>()
             .add_plugins(bevy::pbr::MaterialPlugin::<LeafCloudMaterial>::default())
@@ -137,7 +138,7 @@ impl Plugin for LeafCloudRenderPlugin {
                 PostUpdate,
                 (attach_visuals, write_poses)
                     .chain()
-                    .after(crate::WindfallSystems::WriteBack),
+                    .after(crate::schedule::WindfallSystems::WriteBack),
             );
     }
 }
@@ -278,16 +279,16 @@ fn outline(shape: &Shape) -> Vec<Vec3> {
 
 /// Most leaves of one cloud that are drawn: the vertex buffer (6–8 vertices of 56 bytes a leaf)
 /// stays under 256 MiB, wgpu's default largest buffer. Leaves beyond are simulated, not drawn.
-pub const MAX_DRAWN_LEAVES: usize = 500_000;
+pub(crate) const MAX_DRAWN_LEAVES: usize = 500_000;
 
 /// How many of `leaves` are drawn.
 fn drawn(leaves: usize) -> usize {
     leaves.min(MAX_DRAWN_LEAVES)
 }
 
-/// `count` leaves (at least 1, at most [`MAX_DRAWN_LEAVES`]) of `shape`'s outline at the origin,
+/// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::gpu::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of `shape`'s outline at the origin,
 /// each a triangle fan facing +Y, tagged with its index in UV set 1 and coloured from `look`.
-pub fn cloud_mesh(shape: &Shape, count: u32, look: &LeafCloudLook) -> Mesh {
+pub(crate) fn cloud_mesh(shape: &Shape, count: u32, look: &LeafCloudLook) -> Mesh {
     let corners = outline(shape);
     let n = corners.len() as u32;
     let count = drawn(count as usize).max(1) as u32;
@@ -337,4 +338,20 @@ fn hash(leaf: u32) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^ (z >> 31)
+}
+
+/// Limits and constants of [`LeafCloudRenderPlugin`].
+impl LeafCloudRenderPlugin {
+    /// Most leaves of one cloud that are drawn: the vertex buffer (6–8 vertices of 56 bytes a leaf)
+    /// stays under 256 MiB, wgpu's default largest buffer. Leaves beyond are simulated, not drawn.
+    pub const MAX_DRAWN_LEAVES: usize = MAX_DRAWN_LEAVES;
+}
+
+impl LeafCloudLook {
+    /// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::gpu::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of
+    /// `shape`'s outline at the origin, each a triangle fan facing +Y, tagged with its index in
+    /// UV set 1 and coloured from this look: the mesh a cloud is drawn with.
+    pub fn mesh(&self, shape: &Shape, count: u32) -> Mesh {
+        cloud_mesh(shape, count, self)
+    }
 }

@@ -5,6 +5,7 @@
     forward_io::{Vertex, VertexOutput},
     view_transformations::position_world_to_clip,
 }
+#import bevy_windfall::math::rotate_by_quat
 
 struct LeafPose {
     // xyz: position, m; w: scale.
@@ -13,13 +14,8 @@ struct LeafPose {
     rotation: vec4<f32>,
 }
 
-@group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> leaf_poses: array<LeafPose>;
-
-// v turned by the unit quaternion q.
-fn rotate_by(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
-    let t = 2.0 * cross(q.xyz, v);
-    return v + q.w * t + cross(q.xyz, t);
-}
+// Binding 103: 100 and 101 stay free for the wind (`bevy_windfall::wind`), 102 is the sway's.
+@group(#{MATERIAL_BIND_GROUP}) @binding(103) var<storage, read> leaf_poses: array<LeafPose>;
 
 @vertex
 fn vertex(vertex: Vertex) -> VertexOutput {
@@ -30,11 +26,11 @@ fn vertex(vertex: Vertex) -> VertexOutput {
     let leaf = 0u;
 #endif
     let pose = leaf_poses[min(leaf, arrayLength(&leaf_poses) - 1u)];
-    let world = pose.position.xyz + rotate_by(pose.rotation, vertex.position * pose.position.w);
+    let world = pose.position.xyz + rotate_by_quat(pose.rotation, vertex.position * pose.position.w);
     out.world_position = vec4<f32>(world, 1.0);
     out.position = position_world_to_clip(world);
 #ifdef VERTEX_NORMALS
-    out.world_normal = rotate_by(pose.rotation, vertex.normal);
+    out.world_normal = rotate_by_quat(pose.rotation, vertex.normal);
 #endif
 #ifdef VERTEX_UVS_A
     out.uv = vertex.uv;

@@ -7,8 +7,8 @@
 //!
 //! | buffer | binding | contents | uploaded |
 //! |---|---|---|---|
-//! | `wind_nodes` | 100 | the turbulence nodes, 3 × f32 each ([`node_bytes`]) | when the field is built or rebuilt |
-//! | `wind_params` | 101 | [`GpuWindParams`]: clock, log-law constants, σ's, travel, pulse, ≤ [`MAX_GPU_LOCALS`] shelters and sources | every frame (7 280 B) |
+//! | `wind_nodes` | 100 | the turbulence nodes, 3 × f32 each | when the field is built or rebuilt |
+//! | `wind_params` | 101 | the field's parameters: clock, log-law constants, σ's, travel, pulse, ≤ 64 shelters and sources | every frame (7 280 B) |
 //!
 //! Both live in [`WindGpuBuffers`] as [`ShaderBuffer`] assets: bind them in a material
 //! (`#[storage(100, read_only)]`, `#[storage(101, read_only)]`) or in a compute pass (set the
@@ -23,7 +23,9 @@
 //!
 //! [`LeafCloudRenderPlugin`] draws every [`LeafCloud`](crate::freefall::LeafCloud) in one draw
 //! call: a mesh of all its leaves whose vertex shader reads each leaf's pose from a storage
-//! buffer (`cloud.wgsl`).
+//! buffer (`cloud.wgsl`, binding 103, so a cloud's material may also bind the wind at 100 and
+//! 101; the sway material's settings are at 102). Helpers the shaders share (a rotation by a
+//! quaternion) are in the module `bevy_windfall::math`.
 //!
 //! Time in the shader is relative to the uploaded clock (`dt`, seconds): everything that grows
 //! with the clock is reduced on the CPU in f64, so f32 on the GPU stays as exact as the CPU
@@ -33,11 +35,9 @@ mod cloud;
 mod params;
 mod sway;
 
-pub use cloud::{
-    CloudPoses, LeafCloudLook, LeafCloudMaterial, LeafCloudRenderPlugin, LeafCloudVisual,
-    MAX_DRAWN_LEAVES, POSE_BYTES, cloud_mesh,
-};
-pub use params::{GpuLocal, GpuWindParams, MAX_GPU_LOCALS, node_bytes};
+pub use cloud::{CloudPoses, LeafCloudLook, LeafCloudMaterial, LeafCloudRenderPlugin};
+
+use params::{GpuWindParams, node_bytes};
 pub use sway::{SwaySettings, WindSway, WindSwayMaterial};
 
 use bevy::app::{App, Plugin, PostUpdate};
@@ -70,7 +70,8 @@ pub struct WindGpuPlugin;
 pub struct WindGpuBuffers {
     /// The turbulence nodes (`wind_nodes`, binding 100).
     pub nodes: Handle<ShaderBuffer>,
-    /// The per-frame [`GpuWindParams`] (`wind_params`, binding 101).
+    /// The field's per-frame parameters (`wind_params`, binding 101): the struct
+    /// `WindParams` of the WGSL module.
     pub params: Handle<ShaderBuffer>,
 }
 
@@ -89,6 +90,7 @@ pub struct WindGpuUploads {
 
 impl Plugin for WindGpuPlugin {
     fn build(&self, app: &mut App) {
+        bevy::shader::load_shader_library!(app, "math.wgsl");
         bevy::shader::load_shader_library!(app, "wind.wgsl");
         bevy::asset::embedded_asset!(app, "sway.wgsl");
         app.init_resource::<WindGpuUploads>()

@@ -15,11 +15,11 @@ use crate::wind::{ShelterKind, SourceShape, SpatialMode, TemporalMode, WindField
 /// Shelters and sources the GPU sees at once, together ([`GpuWindParams::locals`]); the rest
 /// are left out (and [`GpuWindParams::dropped`] counts them). A fixed size keeps the buffer's
 /// size, so bind groups that hold it never go stale.
-pub const MAX_GPU_LOCALS: usize = 64;
+pub(crate) const MAX_GPU_LOCALS: usize = 64;
 
 /// One shelter or local source, as `WindLocal` in `wind.wgsl`.
 #[derive(ShaderType, Clone, Copy, Debug, Default, PartialEq)]
-pub struct GpuLocal {
+pub(crate) struct GpuLocal {
     /// World position of the entity.
     pub origin: Vec3,
     /// What it is: 1 sphere, 2 fan, 3 vortex, 4 blast, 5 gust; 10 room, 11 wall.
@@ -47,7 +47,7 @@ pub struct GpuLocal {
 
 /// The per-frame parameters of the wind, as `WindParams` in `wind.wgsl`.
 #[derive(ShaderType, Clone, Debug, PartialEq)]
-pub struct GpuWindParams {
+pub(crate) struct GpuWindParams {
     /// Nodes along (time, x, y, z); 1 for an axis the field does not have.
     pub dims: UVec4,
     /// Unit direction of the mean wind (x, z).
@@ -252,7 +252,7 @@ impl GpuWindParams {
 
 /// The turbulence nodes as the shader reads them: three f32 (u, v, w) per node, row-major over
 /// (time, x, y, z), little-endian bytes.
-pub fn node_bytes(field: &WindField) -> Vec<u8> {
+pub(crate) fn node_bytes(field: &WindField) -> Vec<u8> {
     let nodes = field.nodes();
     let mut bytes = Vec::with_capacity(nodes.len() * 12);
     for n in nodes {
@@ -261,4 +261,29 @@ pub fn node_bytes(field: &WindField) -> Vec<u8> {
         }
     }
     bytes
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What the CPU spends on uploads (a test build, not a release benchmark): packing the nodes
+    /// of the default 128² plane (once per field) and the parameters (every frame).
+    #[test]
+    fn packing_the_default_plane() {
+        let field = WindField::new(crate::wind::WindConfig::default()).unwrap();
+        let start = std::time::Instant::now();
+        let bytes = node_bytes(&field);
+        let packing = start.elapsed();
+        let start = std::time::Instant::now();
+        for _ in 0..100 {
+            std::hint::black_box(GpuWindParams::of(&field));
+        }
+        println!(
+            "128² plane: {} B of nodes packed in {packing:?}; parameters in {:?} a frame",
+            bytes.len(),
+            start.elapsed() / 100
+        );
+        assert_eq!(bytes.len(), 128 * 128 * 12);
+    }
 }

@@ -12,6 +12,8 @@
 // with the clock was reduced on the CPU in f64, so f32 here stays exact after hours of play.
 #define_import_path bevy_windfall::wind
 
+#import bevy_windfall::math::rotate_by_quat
+
 struct WindLocal {
     origin: vec3<f32>,
     kind: u32,
@@ -137,11 +139,6 @@ fn wind_global(p: vec3<f32>, dt: f32) -> vec3<f32> {
     return wind * wind_pulse(w.pulse, dt);
 }
 
-fn wind_rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
-    let t = 2.0 * cross(q.xyz, v);
-    return v + q.w * t + cross(q.xyz, t);
-}
-
 // The fade (1 − s²)², 1 at s = 0, 0 with zero slope at |s| ≥ 1.
 fn wind_fade(s: f32) -> f32 {
     let t = max(1.0 - s * s, 0.0);
@@ -163,7 +160,7 @@ fn wind_shelter(s: WindLocal, p: vec3<f32>) -> f32 {
     if rr >= s.reach_squared {
         return 1.0;
     }
-    let local = wind_rotate(s.to_local, d);
+    let local = rotate_by_quat(s.to_local, d);
     let outside = length(max(abs(local) - s.vector, vec3<f32>(0.0)));
     if s.kind == 10u {
         return 1.0 - wind_fade(outside / WIND_ROOM_EDGE);
@@ -174,7 +171,7 @@ fn wind_shelter(s: WindLocal, p: vec3<f32>) -> f32 {
     let half = s.vector;
     let height = 2.0 * half.y;
     let length_ = max(max(s.shape.x, 0.0) * height, WIND_TINY);
-    let downwind = wind_rotate(s.to_local, vec3<f32>(wind_params.along.x, 0.0, wind_params.along.y));
+    let downwind = rotate_by_quat(s.to_local, vec3<f32>(wind_params.along.x, 0.0, wind_params.along.y));
     var wind = vec3<f32>(downwind.x, 0.0, downwind.z);
     let wl = length(wind);
     if wl > 0.0 {
@@ -211,7 +208,7 @@ fn wind_source(s: WindLocal, p: vec3<f32>, dt: f32) -> vec3<f32> {
             v = s.vector * wind_fade(r / k.x);
         }
         case 2u: { // fan: range, half angle, speed
-            let forward = wind_rotate(s.to_world, vec3<f32>(0.0, 0.0, -1.0));
+            let forward = rotate_by_quat(s.to_world, vec3<f32>(0.0, 0.0, -1.0));
             let along = dot(d, forward);
             if along > 0.0 && r > 0.0 {
                 let angle = acos(min(along / r, 1.0));
@@ -221,7 +218,7 @@ fn wind_source(s: WindLocal, p: vec3<f32>, dt: f32) -> vec3<f32> {
             }
         }
         case 3u: { // vortex: radius, peak speed, updraft
-            let local = wind_rotate(s.to_local, d);
+            let local = rotate_by_quat(s.to_local, d);
             let horizontal = sqrt(local.x * local.x + local.z * local.z);
             let envelope = wind_plateau(r, 0.5 * k.x, k.x);
             let core = 0.2 * k.x;
@@ -234,7 +231,7 @@ fn wind_source(s: WindLocal, p: vec3<f32>, dt: f32) -> vec3<f32> {
                 tangent = vec3<f32>(local.z, 0.0, -local.x) / horizontal;
             }
             let lift = k.z * wind_fade(horizontal / max(k.x, WIND_TINY));
-            v = wind_rotate(s.to_world, tangent * (k.y * swirl) + vec3<f32>(0.0, lift, 0.0))
+            v = rotate_by_quat(s.to_world, tangent * (k.y * swirl) + vec3<f32>(0.0, lift, 0.0))
                 * envelope;
         }
         case 4u: { // blast: peak speed, front speed, radius
@@ -251,14 +248,14 @@ fn wind_source(s: WindLocal, p: vec3<f32>, dt: f32) -> vec3<f32> {
         }
         case 5u: { // gust: strength, front speed, width, range
             let age = s.age + dt;
-            let local = wind_rotate(s.to_local, d);
+            let local = rotate_by_quat(s.to_local, d);
             let along = -local.z;
             if age >= 0.0 && along >= 0.0 && along <= k.w {
                 let behind = age * k.y - along;
                 if behind >= 0.0 && behind <= k.z {
                     let u = 2.0 * behind / max(k.z, WIND_TINY) - 1.0;
                     let across = length(local.xy) / (0.5 * k.w);
-                    v = wind_rotate(s.to_world, vec3<f32>(0.0, 0.0, -1.0))
+                    v = rotate_by_quat(s.to_world, vec3<f32>(0.0, 0.0, -1.0))
                         * (k.x * wind_fade(u) * wind_fade(across));
                 }
             }

@@ -295,10 +295,10 @@ pub(super) fn cloth(ui: &mut egui::Ui, inspector: &mut WindfallInspector, target
         ui.radio_value(&mut p.leading, LeadingYarn::Center, "centre");
         ui.radio_value(&mut p.leading, LeadingYarn::Bottom, "bottom");
     });
-    let mut non_frozen = matches!(p.model, ClothWindModel::NonFrozen { .. });
+    let mut non_frozen = matches!(p.model, ClothWindModel::Evolving { .. });
     if ui.checkbox(&mut non_frozen, "non-frozen").changed() {
         p.model = if non_frozen {
-            ClothWindModel::NonFrozen { frames: 64 }
+            ClothWindModel::Evolving { frames: 64 }
         } else {
             ClothWindModel::Frozen
         };

@@ -26,7 +26,7 @@ pub(crate) struct AmplitudeTable {
 
 /// Most entries a [`PowerOfKey`] memo may have (64 MiB). The rule "a few entries per
 /// evaluation" alone lets a big grid's memo reach 16 entries per node: a 8192² grid has keys up
-/// to 2 · 4096² (a 128 MiB memo), and grids near [`super::MAX_NODES`] up to 4 GiB.
+/// to 2 · 4096² (a 128 MiB memo), and grids near [`Synthesizer::MAX_NODES`](crate::spectrum::Synthesizer::MAX_NODES) up to 4 GiB.
 const MAX_MEMO_ENTRIES: usize = 1 << 24;
 
 /// `S` as a function of the integer key `|f|² L²`, relative to the lowest frequency's.

@@ -2,7 +2,7 @@
 
 /// The shape of a row-major grid (last index fastest).
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct GridShape {
+pub(crate) struct GridShape {
     dims: Vec<usize>,
     strides: Vec<usize>,
 }
@@ -35,11 +35,7 @@ impl GridShape {
         self.dims.iter().product()
     }
 
-    /// True when the grid has no node.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
+    #[cfg(test)]
     /// Flat index of the node whose index on every axis is negated modulo the axis length: the
     /// position of the complex-conjugate partner of a Fourier coefficient.
     pub fn mirror(&self, flat: usize) -> usize {
@@ -53,6 +49,7 @@ impl GridShape {
         out
     }
 
+    #[cfg(test)]
     /// Squared frequency magnitude `Σ (k_i / N_i)²` of a flat index, in cycles per node, with
     /// `k_i` the signed wavenumber in `(−N_i/2, N_i/2]`.
     pub fn frequency_squared(&self, flat: usize) -> f64 {
@@ -69,7 +66,8 @@ impl GridShape {
 }
 
 /// Signed wavenumber of FFT bin `i` of an `n`-point transform, in `(−n/2, n/2]`.
-pub fn signed_wavenumber(i: usize, n: usize) -> i64 {
+#[cfg(test)]
+pub(crate) fn signed_wavenumber(i: usize, n: usize) -> i64 {
     if 2 * i <= n {
         i as i64
     } else {

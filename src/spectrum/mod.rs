@@ -9,7 +9,7 @@
 //!
 //! | quantity | meaning |
 //! |---|---|
-//! | `dims` | grid nodes per axis, row-major (last index fastest), each ≥ 2, at most [`MAX_AXES`] axes and [`MAX_NODES`] nodes in all |
+//! | `dims` | grid nodes per axis, row-major (last index fastest), each ≥ 2, at most [`Synthesizer::MAX_AXES`](crate::spectrum::Synthesizer::MAX_AXES) axes and [`Synthesizer::MAX_NODES`](crate::spectrum::Synthesizer::MAX_NODES) nodes in all |
 //! | `beta` | spectral exponent β ≥ 0: 0 white, 1 pink, 5/3 Kolmogorov, 2 Brownian |
 //! | `seed` | 64-bit seed of a PCG stream: same seed, same field, bit for bit |
 //!
@@ -23,18 +23,16 @@
 //! selects them for a [`Synthesizer`] where speed matters more than cross-machine bits.
 
 mod amplitude;
+mod error;
 mod fft;
 mod grid;
-pub mod measure;
 mod normal;
 mod sample;
 mod synth;
 
+pub(crate) use error::MAX_NODES;
+pub use error::SpectrumError;
 pub use fft::FftBackend;
-pub use grid::GridShape;
-pub(crate) use sample::periodic_lerp;
-pub use sample::periodic_lerp_2d;
-pub use synth::{
-    CACHED_SYNTHESIZERS, MAX_AXES, MAX_CACHED_NODES, MAX_NODES, SpectrumError, Synthesizer, fbm,
-    fbm_pair, try_fbm, try_fbm_pair,
-};
+pub(crate) use grid::GridShape;
+pub(crate) use sample::{periodic_lerp, periodic_lerp_2d};
+pub use synth::{Synthesizer, fbm, try_fbm};

@@ -58,7 +58,7 @@ fn wrap(c: f64, n: usize) -> (usize, usize, f32) {
 }
 
 /// `periodic_lerp` (multilinear interpolation on a periodic grid) for a 2-D grid: the same result, without the general corner loop.
-pub fn periodic_lerp_2d<T>(shape: &GridShape, values: &[T], x: f64, y: f64) -> T
+pub(crate) fn periodic_lerp_2d<T>(shape: &GridShape, values: &[T], x: f64, y: f64) -> T
 where
     T: Copy + Mul<f32, Output = T> + Add<Output = T>,
 {

@@ -3,65 +3,12 @@
 use std::sync::{Arc, Mutex};
 
 use rustfft::num_complex::Complex;
-use thiserror::Error;
 
 use super::amplitude::AmplitudeTable;
+use super::error::{MAX_AXES, MAX_NODES, SpectrumError};
 use super::fft::{FftBackend, InverseFftNd};
 use super::grid::GridShape;
 use super::normal::NormalPairs;
-
-/// Why a noise field could not be made.
-#[derive(Clone, Debug, Error, PartialEq)]
-pub enum SpectrumError {
-    /// No axis was given.
-    #[error("`dims` is empty: a field needs at least one axis")]
-    NoAxis,
-    /// More axes than [`MAX_AXES`].
-    #[error("`dims` has {axes} axes, more than the limit of {MAX_AXES}")]
-    TooManyAxes {
-        /// How many were given.
-        axes: usize,
-    },
-    /// An axis has fewer than two nodes.
-    #[error("`dims[{axis}]` = {len}: every axis needs at least 2 nodes")]
-    AxisTooShort {
-        /// Which axis.
-        axis: usize,
-        /// Its node count.
-        len: usize,
-    },
-    /// β is negative or not finite.
-    #[error("`beta` = {0}: the spectral exponent must be finite and ≥ 0")]
-    Beta(f32),
-    /// More nodes than [`MAX_NODES`] (the product saturates at `usize::MAX`).
-    #[error("`dims`: {nodes} nodes in all, more than the limit of {MAX_NODES}")]
-    TooManyNodes {
-        /// The product of `dims`, saturated.
-        nodes: usize,
-    },
-}
-
-impl SpectrumError {
-    /// The argument at fault: `"dims"` or `"beta"`.
-    pub fn field(&self) -> &'static str {
-        match self {
-            Self::Beta(_) => "beta",
-            _ => "dims",
-        }
-    }
-}
-
-/// Most axes a field may have: 4 (space and time). The amplitude table sums the power of
-/// `2^n` alias images per bin, so without a bound a valid node count spread over many short
-/// axes (`[2; 26]`) would take 2^52 steps to tabulate; with it, the table costs at most 16 steps
-/// per node.
-pub const MAX_AXES: usize = 4;
-
-/// Largest field (product of `dims`) any synthesis may make: 2^26 nodes. It is checked before
-/// anything is allocated; at the limit a field takes 512 MiB of spectrum while it is made and
-/// 256 MiB of output (twice that for a pair). Every grid derived from user input (wind fields,
-/// cloth noise) is bounded by it or by a smaller limit of its own.
-pub const MAX_NODES: usize = 1 << 26;
 
 /// A real, periodic, zero-mean, unit-variance 1/f^β field on a row-major grid.
 ///
@@ -78,24 +25,6 @@ pub fn fbm(dims: &[usize], beta: f32, seed: u64) -> Vec<f32> {
 /// [`fbm`] with a typed error instead of a panic.
 pub fn try_fbm(dims: &[usize], beta: f32, seed: u64) -> Result<Vec<f32>, SpectrumError> {
     Ok(Synthesizer::new(dims, beta, FftBackend::Portable)?.field(seed))
-}
-
-/// Two independent fields from one complex inverse FFT (the real parts of one spectrum's
-/// transform are the first field, the imaginary parts the second), at the cost of one field.
-///
-/// # Panics
-/// On the inputs [`try_fbm_pair`] rejects.
-pub fn fbm_pair(dims: &[usize], beta: f32, seed: u64) -> (Vec<f32>, Vec<f32>) {
-    try_fbm_pair(dims, beta, seed).unwrap_or_else(|e| panic!("fbm_pair: {e}"))
-}
-
-/// [`fbm_pair`] with a typed error instead of a panic.
-pub fn try_fbm_pair(
-    dims: &[usize],
-    beta: f32,
-    seed: u64,
-) -> Result<(Vec<f32>, Vec<f32>), SpectrumError> {
-    Ok(Synthesizer::new(dims, beta, FftBackend::Portable)?.pair(seed))
 }
 
 fn validate(dims: &[usize], beta: f32) -> Result<(), SpectrumError> {
@@ -119,11 +48,11 @@ fn validate(dims: &[usize], beta: f32) -> Result<(), SpectrumError> {
 }
 
 /// How many synthesizers [`Synthesizer::shared`] keeps (most recently used first).
-pub const CACHED_SYNTHESIZERS: usize = 4;
+pub(crate) const CACHED_SYNTHESIZERS: usize = 4;
 
 /// Grids above this many nodes (2^22: 256³ is above, 128³ below) are not kept: their tables
 /// (a quarter to an eighth of the grid, 4 bytes a bin) would stay for the process's life.
-pub const MAX_CACHED_NODES: usize = 1 << 22;
+pub(crate) const MAX_CACHED_NODES: usize = 1 << 22;
 
 /// The key of a shared synthesizer: dims, β's bits, backend.
 type SharedKey = (Vec<usize>, u32, FftBackend);
@@ -162,8 +91,8 @@ impl Synthesizer {
         })
     }
 
-    /// A shared synthesizer for `dims`, `beta` and `backend`: the last [`CACHED_SYNTHESIZERS`]
-    /// made this way (of at most [`MAX_CACHED_NODES`] nodes) are kept, so rebuilding a field of the same grid and β (a new seed, a new
+    /// A shared synthesizer for `dims`, `beta` and `backend`: the last [`Synthesizer::CACHED`](crate::spectrum::Synthesizer::CACHED)
+    /// made this way (of at most [`Synthesizer::MAX_CACHED_NODES`](crate::spectrum::Synthesizer::MAX_CACHED_NODES) nodes) are kept, so rebuilding a field of the same grid and β (a new seed, a new
     /// speed, a rebuilt wind) skips the amplitude table and the FFT planning, which are most of
     /// a small field's cost. The table and plans depend only on the key: the fields are the same
     /// bits either way.
@@ -323,6 +252,28 @@ fn normalized(
     field.iter().map(|c| part(c) * scale).collect()
 }
 
+/// Limits and constants of [`Synthesizer`].
+impl Synthesizer {
+    /// How many synthesizers [`Synthesizer::shared`] keeps (most recently used first).
+    pub const CACHED: usize = CACHED_SYNTHESIZERS;
+
+    /// Most axes a field may have: 4 (space and time). The amplitude table sums the power of
+    /// `2^n` alias images per bin, so without a bound a valid node count spread over many short
+    /// axes (`[2; 26]`) would take 2^52 steps to tabulate; with it, the table costs at most 16 steps
+    /// per node.
+    pub const MAX_AXES: usize = crate::spectrum::error::MAX_AXES;
+
+    /// Grids above this many nodes (2^22: 256³ is above, 128³ below) are not kept: their tables
+    /// (a quarter to an eighth of the grid, 4 bytes a bin) would stay for the process's life.
+    pub const MAX_CACHED_NODES: usize = MAX_CACHED_NODES;
+
+    /// Largest field (product of `dims`) any synthesis may make: 2^26 nodes. It is checked before
+    /// anything is allocated; at the limit a field takes 512 MiB of spectrum while it is made and
+    /// 256 MiB of output (twice that for a pair). Every grid derived from user input (wind fields,
+    /// cloth noise) is bounded by it or by a smaller limit of its own.
+    pub const MAX_NODES: usize = crate::spectrum::error::MAX_NODES;
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -439,7 +390,9 @@ mod tests {
         // Overflowing products saturate rather than wrap to a small, accepted size.
         let wrap = [1usize << 32, 1 << 32, 4];
         assert_eq!(
-            try_fbm_pair(&wrap, 1.0, 0).unwrap_err(),
+            Synthesizer::new(&wrap, 1.0, FftBackend::Portable)
+                .map(|_| ())
+                .unwrap_err(),
             SpectrumError::TooManyNodes { nodes: usize::MAX }
         );
     }

@@ -1,11 +1,17 @@
-//! Configuration of a [`WindField`](super::WindField) and its validation.
+//! Configuration of a [`WindField`](super::field::WindField) and its validation.
 
 use bevy::math::Vec2;
 
 use super::pulse::Pulse;
 use crate::spectrum::FftBackend;
 use bevy::reflect::Reflect;
-use thiserror::Error;
+
+use super::error::{WindError, check};
+
+/// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
+pub(crate) const MAX_REFERENCE_SPEED: f32 = 1.0e4;
+/// Highest accepted `turbulence_intensity`.
+pub(crate) const MAX_TURBULENCE_INTENSITY: f32 = 10.0;
 
 /// Where the turbulence lives in space.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -37,12 +43,12 @@ pub enum TemporalMode {
     },
 }
 
-/// Everything that defines a [`WindField`](super::WindField). Y is up.
+/// Everything that defines a [`WindField`](super::field::WindField). Y is up.
 ///
 /// | field | unit | default | meaning |
 /// |---|---|---|---|
 /// | `reference_speed` | m/s | 4.0 | mean wind speed U(h_ref) (a gentle breeze) |
-/// | `reference_height` | m | 10.0 | h_ref, where `reference_speed` holds (standard 10 m); ≥ e^0.1 z0 ([`MIN_LOG_RATIO`]) |
+/// | `reference_height` | m | 10.0 | h_ref, where `reference_speed` holds (standard 10 m); ≥ e^0.1 z0 ([`WindConfig::MIN_LOG_RATIO`](crate::wind::WindConfig::MIN_LOG_RATIO)) |
 /// | `roughness` | m | 0.3 | z0 of the log law (0.3: scattered trees, the paper's value) |
 /// | `direction` | – | (1, 0) | horizontal direction (x, z) the wind blows toward |
 /// | `beta` | – | 5/3 | spectral exponent (Kolmogorov) |
@@ -108,19 +114,19 @@ impl Default for WindConfig {
 }
 
 /// Largest grid (including the time axis) a field may have: the spectral synthesis' budget,
-/// [`crate::spectrum::MAX_NODES`] = 2^26 nodes (768 MiB of samples).
-pub const MAX_NODES: usize = crate::spectrum::MAX_NODES;
+/// [`WindConfig::MAX_NODES`](crate::wind::WindConfig::MAX_NODES) = 2^26 nodes (768 MiB of samples).
+pub(crate) const MAX_NODES: usize = crate::spectrum::MAX_NODES;
 
 /// Mean wind speed at 10 m, m/s, for each Beaufort force 0–12: the middle of the WMO range of
 /// the force (force 0: calm, below 0.3 m/s; force 12: the lower bound of hurricane force,
 /// 32.7 m/s).
-pub const BEAUFORT_SPEEDS: [f32; 13] = [
+pub(crate) const BEAUFORT_SPEEDS: [f32; 13] = [
     0.1, 0.9, 2.45, 4.4, 6.7, 9.35, 12.3, 15.5, 18.95, 22.6, 26.45, 30.55, 32.7,
 ];
 
 impl WindConfig {
     /// The default wind (over scattered trees, z0 = 0.3 m) at Beaufort force `force` (clamped
-    /// to 12): [`BEAUFORT_SPEEDS`] at a reference height of 10 m, where the scale is defined.
+    /// to 12): [`WindConfig::BEAUFORT_SPEEDS`](crate::wind::WindConfig::BEAUFORT_SPEEDS) at a reference height of 10 m, where the scale is defined.
     pub fn beaufort(force: u8) -> Self {
         Self {
             reference_speed: BEAUFORT_SPEEDS[usize::from(force.min(12))],
@@ -132,67 +138,8 @@ impl WindConfig {
 
 /// Least accepted ln(h_ref/z0): the reference height is at least e^0.1 ≈ 1.105 times the
 /// roughness length. It keeps eq. 10's u* = κU/ln(h/z0) finite and the default turbulence
-/// intensity 1/ln(h/z0) within [`super::MAX_TURBULENCE_INTENSITY`].
-pub const MIN_LOG_RATIO: f32 = 0.1;
-
-/// A [`WindConfig`] field that is out of range. [`WindError::field`] names it.
-#[derive(Clone, Debug, Error, PartialEq)]
-pub enum WindError {
-    /// A number outside its valid range.
-    #[error("`{field}` = {value}: {reason}")]
-    Invalid {
-        /// The field's name, as in [`WindConfig`].
-        field: &'static str,
-        /// The rejected value.
-        value: f32,
-        /// What the value must be.
-        reason: &'static str,
-    },
-    /// A grid axis with fewer than two nodes.
-    #[error("`{field}` = {len}: a grid axis needs at least 2 nodes")]
-    GridAxis {
-        /// The field's name.
-        field: &'static str,
-        /// The rejected node count.
-        len: usize,
-    },
-    /// More nodes than [`MAX_NODES`].
-    #[error("`{field}`: {nodes} nodes in all, more than the limit of {MAX_NODES}")]
-    TooManyNodes {
-        /// The field's name.
-        field: &'static str,
-        /// The node count asked for.
-        nodes: usize,
-    },
-}
-
-impl WindError {
-    /// Name of the offending [`WindConfig`] field (`"roughness"`, `"grid.x"`, ...).
-    pub fn field(&self) -> &'static str {
-        match self {
-            Self::Invalid { field, .. } | Self::GridAxis { field, .. } => field,
-            Self::TooManyNodes { field, .. } => field,
-        }
-    }
-}
-
-/// `Ok` when `ok`, otherwise an [`WindError::Invalid`] naming `field`.
-pub(super) fn check(
-    ok: bool,
-    field: &'static str,
-    value: f32,
-    reason: &'static str,
-) -> Result<(), WindError> {
-    if ok {
-        Ok(())
-    } else {
-        Err(WindError::Invalid {
-            field,
-            value,
-            reason,
-        })
-    }
-}
+/// intensity 1/ln(h/z0) within [`WindConfig::MAX_TURBULENCE_INTENSITY`](crate::wind::WindConfig::MAX_TURBULENCE_INTENSITY).
+pub(crate) const MIN_LOG_RATIO: f32 = 0.1;
 
 fn check_axis(field: &'static str, len: usize) -> Result<(), WindError> {
     if len >= 2 {
@@ -282,4 +229,27 @@ impl WindConfig {
         }
         self.pulse.validate()
     }
+}
+
+/// Limits and constants of [`WindConfig`].
+impl WindConfig {
+    /// Largest grid (including the time axis) a field may have: the spectral synthesis' budget,
+    /// [`WindConfig::MAX_NODES`](crate::wind::WindConfig::MAX_NODES) = 2^26 nodes (768 MiB of samples).
+    pub const MAX_NODES: usize = MAX_NODES;
+
+    /// Mean wind speed at 10 m, m/s, for each Beaufort force 0–12: the middle of the WMO range of
+    /// the force (force 0: calm, below 0.3 m/s; force 12: the lower bound of hurricane force,
+    /// 32.7 m/s).
+    pub const BEAUFORT_SPEEDS: [f32; 13] = BEAUFORT_SPEEDS;
+
+    /// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
+    pub const MAX_REFERENCE_SPEED: f32 = MAX_REFERENCE_SPEED;
+
+    /// Highest accepted `turbulence_intensity`.
+    pub const MAX_TURBULENCE_INTENSITY: f32 = MAX_TURBULENCE_INTENSITY;
+
+    /// Least accepted ln(h_ref/z0): the reference height is at least e^0.1 ≈ 1.105 times the
+    /// roughness length. It keeps eq. 10's u* = κU/ln(h/z0) finite and the default turbulence
+    /// intensity 1/ln(h/z0) within [`WindConfig::MAX_TURBULENCE_INTENSITY`](crate::wind::WindConfig::MAX_TURBULENCE_INTENSITY).
+    pub const MIN_LOG_RATIO: f32 = MIN_LOG_RATIO;
 }

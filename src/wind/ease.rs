@@ -1,20 +1,24 @@
-//! Smooth changes of the mean wind ([`WindField::ease_to`](super::WindField::ease_to)): weather
+//! Smooth changes of the mean wind ([`WindField::ease_to`](super::field::WindField::ease_to)): weather
 //! that builds up or dies down, and a wind that veers, instead of a jump.
 
 use bevy::math::Vec2;
+use bevy::reflect::Reflect;
 
-/// Where the mean wind is heading and how fast it gets there.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Ease {
+/// Where [`WindField::ease_to`](super::field::WindField::ease_to) is taking the mean wind and how fast
+/// it gets there ([`WindField::easing`](super::field::WindField::easing)).
+#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
+#[reflect(Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct WindEasing {
     /// Target speed at the reference height, m/s.
-    pub(super) speed: f32,
+    pub speed: f32,
     /// Target direction, a unit vector (x, z).
-    pub(super) direction: Vec2,
+    pub direction: Vec2,
     /// τ, s of wind time.
-    pub(super) time_constant: f32,
+    pub time_constant: f32,
 }
 
-impl Ease {
+impl WindEasing {
     /// One step of `dt` wind seconds from `speed` and the unit `direction`: both move the
     /// fraction 1 − e^(−dt/τ) of the way (the direction by that fraction of the angle between,
     /// turning the short way), so the speed follows a first-order lag and never jumps. Returns

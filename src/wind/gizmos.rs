@@ -10,14 +10,14 @@ use bevy::math::{Isometry3d, Quat, Vec2, Vec3};
 use bevy::reflect::Reflect;
 use bevy::transform::components::GlobalTransform;
 
-use super::WindField;
+use super::field::WindField;
 use super::source::{SourceShape, WindSource};
 
 /// Draws a grid of wind arrows every frame while a [`WindField`] exists, and the extent of
 /// every [`WindSource`] (spheres, a fan's cone, a vortex's core and rim, a blast's reach), when the
 /// [`WindGizmos`] gizmo group is enabled (off by default; part of
 /// [`WindfallDebugPlugin`](crate::WindfallDebugPlugin)).
-pub struct WindGizmosPlugin;
+pub(crate) struct WindGizmosPlugin;
 
 impl Plugin for WindGizmosPlugin {
     fn build(&self, app: &mut App) {
@@ -85,7 +85,7 @@ impl Default for WindGizmos {
 /// Colour classes of the free-fall paper's Fig. 13: speed V against the mean speed U at that
 /// height. Red V > 2U, pink U < V ≤ 2U, blue U/2 < V ≤ U, black V ≤ U/2 (drawn dark grey so it
 /// shows on dark ground).
-pub fn speed_class_color(speed: f32, mean: f32) -> Color {
+pub(crate) fn speed_class_color(speed: f32, mean: f32) -> Color {
     let rgb = if speed > 2.0 * mean {
         LinearRgba::rgb(1.0, 0.05, 0.05)
     } else if speed > mean {
@@ -166,5 +166,13 @@ fn draw_wind_sources(
                 gizmos.arrow(origin, origin + forward * range, color);
             }
         }
+    }
+}
+
+impl WindGizmos {
+    /// The colour class of Fig. 13 of the free-fall paper for speed V against the mean speed U
+    /// at that height: red V > 2U, pink U < V ≤ 2U, blue U/2 < V ≤ U, dark grey V ≤ U/2.
+    pub fn speed_class_color(speed: f32, mean: f32) -> Color {
+        speed_class_color(speed, mean)
     }
 }

@@ -8,36 +8,40 @@
 //! | friction velocity | u* | m/s | eq. 10, from U at the reference height |
 //! | roughness length | z0 | m | eq. 10 |
 //! | turbulence spectrum | S ∝ 1/f^β along a line, β = 5/3 | – | eq. 11, 13 |
-//! | amplitudes | σ_u = I·U(h_ref), σ_v = 0.88 σ_u, σ_w = 0.55 σ_u | m/s | eq. 12 (see [`profile`]) |
+//! | amplitudes | σ_u = I·U(h_ref), σ_v = 0.88 σ_u, σ_w = 0.55 σ_u | m/s | eq. 12 ([`WindField::sigma`]) |
 //! | plane-to-height scaling | ln(h/z0) / ln(h0/z0) | – | eq. 14 |
 //!
 //! [`WindPlugin`] inserts the field and advances its clock on the fixed timestep.
 
 mod config;
 mod ease;
+mod error;
 mod field;
 #[cfg(feature = "gizmos")]
 mod gizmos;
+mod placement;
 mod plugin;
-pub mod profile;
+pub(crate) mod profile;
 mod pulse;
 mod rebuild;
 mod settings;
 mod shelter;
 mod snapshot;
 mod source;
+mod sync;
 
-pub use config::{
-    BEAUFORT_SPEEDS, MAX_NODES, MIN_LOG_RATIO, SpatialMode, TemporalMode, WindConfig, WindError,
-};
-pub use field::{MAX_CLOCK, MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, WindField};
+pub use config::{SpatialMode, TemporalMode, WindConfig};
+pub use ease::WindEasing;
+pub use error::WindError;
+pub use field::WindField;
 #[cfg(feature = "gizmos")]
-pub use gizmos::{WindGizmos, WindGizmosPlugin, speed_class_color};
+pub use gizmos::WindGizmos;
+#[cfg(feature = "gizmos")]
+pub(crate) use gizmos::WindGizmosPlugin;
 pub use plugin::WindPlugin;
-pub use pulse::{MAX_PULSE_FREQUENCY, Pulse};
-pub use rebuild::{REBUILD_STEPS, WindRebuild, WindRebuilt};
+pub use pulse::Pulse;
+pub use rebuild::{WindRebuild, WindRebuilt};
 pub use settings::WindSettings;
-pub(crate) use settings::apply_wind_settings;
 pub use shelter::{ShelterKind, WindShelter};
 pub use snapshot::WindSnapshot;
 pub use source::{SourceShape, WindSource};

@@ -7,31 +7,43 @@ use bevy::math::Affine3A;
 use bevy::time::Time;
 use bevy::transform::components::{GlobalTransform, Transform};
 
-use super::rebuild::{WindRebuild, land_wind_rebuild};
+use super::config::WindConfig;
+use super::field::WindField;
+use super::rebuild::WindRebuild;
+use super::rebuild::WindRebuilt;
+use super::settings::WindSettings;
 use super::shelter::{PlacedShelter, ShelterKind, WindShelter};
 use super::source::{PlacedSource, SourceShape, WindSource};
-use super::{WindConfig, WindField, WindRebuilt, WindSettings, apply_wind_settings};
-use crate::WindfallSystems;
+use super::sync::{apply_wind_settings, land_wind_rebuild};
+use crate::schedule::WindfallSystems;
+use bevy::ecs::schedule::{InternedScheduleLabel, ScheduleLabel};
 
 /// Adds wind to an app: inserts a [`WindField`] built from `config` (unless the app already has
 /// one) and its live [`WindSettings`]; takes in the settings before the fixed loop
 /// ([`WindfallSystems::Prepare`]); in the simulation schedule (`FixedUpdate`), in
 /// [`WindfallSystems::Wind`], lands a field rebuilt in the background
-/// ([`WindRebuild`](super::WindRebuild)) at its step and advances the wind clock.
+/// ([`WindRebuild`](super::rebuild::WindRebuild)) at its step and advances the wind clock.
 ///
 /// With `config: None` no field is inserted; insert your own with
 /// `app.insert_resource(WindField::new(config)?)`. An invalid `config` is logged as an error
 /// naming the field and no field is inserted (the app goes on in still air).
+///
+/// The wind clock advances in `FixedUpdate`; [`WindPlugin::in_schedule`] moves it (give every
+/// plugin the same schedule, or use `WindfallPlugins::new`).
 #[derive(Clone, Debug)]
 pub struct WindPlugin {
     /// Configuration of the field to insert, if any.
     pub config: Option<WindConfig>,
+    /// Where the clock advances; `None` follows the schedule its group (or an earlier plugin)
+    /// recorded, else `FixedUpdate`.
+    pub schedule: Option<InternedScheduleLabel>,
 }
 
 impl Default for WindPlugin {
     fn default() -> Self {
         Self {
             config: Some(WindConfig::default()),
+            schedule: None,
         }
     }
 }
@@ -41,18 +53,27 @@ impl WindPlugin {
     pub fn new(config: WindConfig) -> Self {
         Self {
             config: Some(config),
+            schedule: None,
+        }
+    }
+
+    /// The same plugin, advancing the wind clock in `schedule` instead of `FixedUpdate`.
+    pub fn in_schedule(self, schedule: impl ScheduleLabel) -> Self {
+        Self {
+            schedule: Some(schedule.intern()),
+            ..self
         }
     }
 }
 
 impl Plugin for WindPlugin {
     fn build(&self, app: &mut App) {
-        crate::configure_sets(app);
-        let schedule = crate::simulation_schedule(app);
+        let schedule = crate::schedule::resolve(app, self.schedule);
+        crate::schedule::configure_sets(app, schedule);
         app.register_type::<WindConfig>()
             .register_type::<WindSettings>()
             .register_type::<WindField>()
-            .register_type::<super::WindSnapshot>()
+            .register_type::<super::snapshot::WindSnapshot>()
             .register_type::<WindSource>()
             .register_type::<SourceShape>()
             .register_type::<WindShelter>()

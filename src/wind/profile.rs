@@ -16,37 +16,42 @@
 //! Each turbulence component is a unit-variance fBm field times its σ.
 
 /// von Kármán's constant κ (eq. 10).
-pub const VON_KARMAN: f32 = 0.40;
+pub(crate) const VON_KARMAN: f32 = 0.40;
 /// σ_v / σ_u, cross-wind to along-wind (eq. 12).
-pub const LATERAL_RATIO: f32 = 0.88;
+pub(crate) const LATERAL_RATIO: f32 = 0.88;
 /// σ_w / σ_u, vertical to along-wind (eq. 12).
-pub const VERTICAL_RATIO: f32 = 0.55;
+pub(crate) const VERTICAL_RATIO: f32 = 0.55;
 
 /// Friction velocity u* from a known mean speed at a known height: eq. 10 solved for u*,
 /// `u* = κ U(h_ref) / ln(h_ref/z0)`. Needs `h_ref > z0 > 0`.
-pub fn friction_velocity(reference_speed: f32, reference_height: f32, roughness: f32) -> f32 {
+pub(crate) fn friction_velocity(
+    reference_speed: f32,
+    reference_height: f32,
+    roughness: f32,
+) -> f32 {
     VON_KARMAN * reference_speed / ln(reference_height / roughness)
 }
 
 /// Logarithmic wind law, eq. 10: `U(h) = (u*/κ) ln(h/z0)`, and 0 at or below z0 (and for a
 /// non-finite height below the ground), never negative or NaN.
-pub fn log_law(friction_velocity: f32, roughness: f32, height: f32) -> f32 {
+pub(crate) fn log_law(friction_velocity: f32, roughness: f32, height: f32) -> f32 {
     friction_velocity / VON_KARMAN * log_ratio(height, roughness)
 }
 
 /// Height scaling of eq. 14: `(ln h − ln z0) / (ln h0 − ln z0)`, clamped to 0 at or below z0.
 /// It carries a wind sampled at height `h0` to height `h`.
-pub fn height_factor(height: f32, plane_height: f32, roughness: f32) -> f32 {
+#[cfg(test)]
+fn height_factor(height: f32, plane_height: f32, roughness: f32) -> f32 {
     log_ratio(height, roughness) / log_ratio(plane_height, roughness)
 }
 
 /// Default turbulence intensity σ_u / U(h_ref) of the neutral surface layer: `1/ln(h_ref/z0)`.
-pub fn surface_layer_intensity(reference_height: f32, roughness: f32) -> f32 {
+pub(crate) fn surface_layer_intensity(reference_height: f32, roughness: f32) -> f32 {
     1.0 / ln(reference_height / roughness)
 }
 
 /// `max(0, ln(h/z0))`, finite for every input (`+∞` height is capped at `f32::MAX`).
-pub fn log_ratio(height: f32, roughness: f32) -> f32 {
+pub(crate) fn log_ratio(height: f32, roughness: f32) -> f32 {
     if height > roughness {
         (ln(height.min(f32::MAX)) - ln(roughness)).max(0.0)
     } else {
@@ -60,7 +65,7 @@ pub fn log_ratio(height: f32, roughness: f32) -> f32 {
 /// against 460 µs for 10 000 reads, `cargo bench --bench freefall -- wind_sampling_only`); see
 /// `docs/live.md` on what cross-platform bits rest on.
 #[inline]
-pub fn ln(x: f32) -> f32 {
+pub(crate) fn ln(x: f32) -> f32 {
     x.ln()
 }
 

@@ -5,20 +5,20 @@ use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use std::f64::consts::TAU;
 
-use super::config::{WindError, check};
+use super::error::{WindError, check};
 
 /// Largest pulse frequency, Hz: faster than any wind gust; it keeps the phase 2πft finite and
 /// exact enough in f64 over the whole clock.
-pub const MAX_PULSE_FREQUENCY: f32 = 100.0;
+pub(crate) const MAX_PULSE_FREQUENCY: f32 = 100.0;
 
 /// The wind's strength swells and eases periodically: it is multiplied by
 /// `1 + magnitude · sin(2π · frequency · t)` at wind time `t`. The factor averages to 1 over a
 /// period (the mean wind is unchanged), peaks at `1 + magnitude` and never drops below
 /// `1 − magnitude ≥ 0`, so the wind never turns round. The default (magnitude 0) does nothing.
 ///
-/// On [`WindConfig::pulse`](super::WindConfig::pulse) it scales the whole global wind (mean
+/// On [`WindConfig::pulse`](super::config::WindConfig::pulse) it scales the whole global wind (mean
 /// and turbulence; the turbulence pattern still travels at the mean speed); on
-/// [`WindSource::pulse`](super::WindSource::pulse) it scales that source.
+/// [`WindSource::pulse`](super::source::WindSource::pulse) it scales that source.
 ///
 /// # Example
 ///
@@ -36,7 +36,7 @@ pub const MAX_PULSE_FREQUENCY: f32 = 100.0;
 pub struct Pulse {
     /// Relative swing of the strength, in [0, 1].
     pub magnitude: f32,
-    /// Swells per second, Hz, in [0, [`MAX_PULSE_FREQUENCY`]].
+    /// Swells per second, Hz, in [0, [`Pulse::MAX_FREQUENCY`](crate::wind::Pulse::MAX_FREQUENCY)].
     pub frequency: f32,
 }
 
@@ -74,7 +74,7 @@ impl Pulse {
     }
 
     /// This pulse with its magnitude clamped to [0, 1] and its frequency to
-    /// [0, [`MAX_PULSE_FREQUENCY`]] (a non-finite value counts as 0): what [`Self::factor`] uses.
+    /// [0, [`Pulse::MAX_FREQUENCY`](crate::wind::Pulse::MAX_FREQUENCY)] (a non-finite value counts as 0): what [`Self::factor`] uses.
     pub fn clamped(&self) -> Self {
         let clamp = |v: f32, hi: f32| if v.is_finite() { v.clamp(0.0, hi) } else { 0.0 };
         Self::new(
@@ -97,4 +97,11 @@ impl Pulse {
         let cycles = (time * f64::from(f)).rem_euclid(1.0);
         (1.0 + f64::from(m) * (TAU * cycles).sin()).max(0.0) as f32
     }
+}
+
+/// Limits and constants of [`Pulse`].
+impl Pulse {
+    /// Largest pulse frequency, Hz: faster than any wind gust; it keeps the phase 2πft finite and
+    /// exact enough in f64 over the whole clock.
+    pub const MAX_FREQUENCY: f32 = MAX_PULSE_FREQUENCY;
 }

@@ -3,19 +3,20 @@
 //! the request, so two runs of a game land it at the same step whatever the machine.
 
 use bevy::ecs::prelude::*;
-use bevy::log::{info, warn};
-use bevy::tasks::{AsyncComputeTaskPool, Task, TaskPool, block_on, futures::check_ready};
+use bevy::tasks::{AsyncComputeTaskPool, Task, TaskPool};
 
+use super::config::WindConfig;
+use super::error::WindError;
+use super::field::WindField;
 use super::field::validate_extra;
-use super::{WindConfig, WindError, WindField, WindSettings};
 
 /// Fixed steps from a rebuild's request to its landing (0.5 s at 60 Hz): long enough for a
 /// 128² plane or a 64³ volume on a slow machine; a larger field that is not ready by then is
 /// waited for at that step.
-pub const REBUILD_STEPS: u32 = 30;
+pub(crate) const REBUILD_STEPS: u32 = 30;
 
 /// A [`WindField`] being synthesised on the [`AsyncComputeTaskPool`]. Insert one (or edit
-/// [`WindSettings`], which starts one for you); [`WindPlugin`](super::WindPlugin) swaps the new
+/// [`WindSettings`](super::settings::WindSettings), which starts one for you); [`WindPlugin`](super::plugin::WindPlugin) swaps the new
 /// field in exactly [`WindRebuild::steps`] fixed steps later, waiting for the synthesis at that
 /// step if it is late, so the swap happens at the same step on every machine (replays and
 /// lockstep multiplayer need that). The new field keeps the old one's clock and its current mean
@@ -34,22 +35,22 @@ pub const REBUILD_STEPS: u32 = 30;
 ///
 /// let smoother = WindConfig { beta: 3.0, ..WindConfig::default() };
 /// let job = WindRebuild::start(smoother)?;
-/// assert_eq!(job.steps(), bevy_windfall::wind::REBUILD_STEPS);
+/// assert_eq!(job.steps(), bevy_windfall::wind::WindRebuild::DEFAULT_STEPS);
 /// # Ok::<(), WindError>(())
 /// ```
 #[derive(Resource)]
 pub struct WindRebuild {
     config: WindConfig,
-    task: Option<Task<WindField>>,
+    pub(super) task: Option<Task<WindField>>,
     /// The field being replaced, once known (a different one at landing: dropped).
-    replaces: Option<u64>,
-    steps: u32,
-    elapsed: u32,
+    pub(super) replaces: Option<u64>,
+    pub(super) steps: u32,
+    pub(super) elapsed: u32,
 }
 
 impl WindRebuild {
     /// Validates `config` now (a bad field is reported here, by name) and starts the synthesis;
-    /// it lands after [`REBUILD_STEPS`] fixed steps.
+    /// it lands after [`WindRebuild::DEFAULT_STEPS`](crate::wind::WindRebuild::DEFAULT_STEPS) fixed steps.
     pub fn start(config: WindConfig) -> Result<Self, WindError> {
         start_rebuild(config, None)
     }
@@ -118,63 +119,10 @@ pub struct WindRebuilt {
     pub config: WindConfig,
 }
 
-/// Counts the [`WindRebuild`] in flight down by one fixed step; at its step, swaps in the new
-/// field (waiting for it if it is late), with the old clock and the live speed and direction.
-pub fn land_wind_rebuild(
-    mut commands: Commands,
-    rebuild: Option<ResMut<WindRebuild>>,
-    old: Option<Res<WindField>>,
-    settings: Option<Res<WindSettings>>,
-    mut rebuilt: MessageWriter<WindRebuilt>,
-) {
-    let Some(mut rebuild) = rebuild else {
-        return;
-    };
-    let current = old.as_ref().map(|f| f.generation());
-    match (rebuild.replaces, current) {
-        (None, _) => rebuild.replaces = current,
-        (Some(a), Some(b)) if a != b => {
-            info!("a WindField was inserted while a rebuild was building: the rebuild is dropped");
-            commands.remove_resource::<WindRebuild>();
-            return;
-        }
-        _ => {}
-    }
-    rebuild.elapsed += 1;
-    if rebuild.elapsed < rebuild.steps {
-        return;
-    }
-    let Some(task) = rebuild.task.as_mut() else {
-        commands.remove_resource::<WindRebuild>();
-        return;
-    };
-    let field = if cfg!(target_arch = "wasm32") {
-        match check_ready(task) {
-            Some(field) => field,
-            None => return,
-        }
-    } else {
-        block_on(task)
-    };
-    rebuild.task = None;
-    let mut field = field;
-    if let Some(old) = old.as_deref() {
-        // Speed and direction changed while it built (directly or through the settings).
-        let (speed, direction) = match settings.as_deref() {
-            Some(s) => (s.reference_speed, s.direction),
-            None => (old.config().reference_speed, old.config().direction),
-        };
-        if let Err(e) = field
-            .set_reference_speed(speed)
-            .and_then(|()| field.set_direction(direction))
-        {
-            warn!("WindRebuild: {e}; the rebuilt field keeps its own speed and direction");
-        }
-        field.continue_clock_of(old);
-    }
-    rebuilt.write(WindRebuilt {
-        config: field.config().clone(),
-    });
-    commands.insert_resource(field);
-    commands.remove_resource::<WindRebuild>();
+/// Limits and constants of [`WindRebuild`].
+impl WindRebuild {
+    /// Fixed steps from a rebuild's request to its landing (0.5 s at 60 Hz): long enough for a
+    /// 128² plane or a 64³ volume on a slow machine; a larger field that is not ready by then is
+    /// waited for at that step.
+    pub const DEFAULT_STEPS: u32 = REBUILD_STEPS;
 }

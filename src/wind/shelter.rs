@@ -1,6 +1,7 @@
 //! Shelter: [`WindShelter`] boxes that calm the global wind in their lee (a wall, a hedge, a
 //! house) or inside them (a room).
 
+use super::placement::{Placement, fade, size};
 use bevy::ecs::component::Component;
 use bevy::ecs::reflect::ReflectComponent;
 use bevy::math::{Affine3A, Quat, Vec3, Vec3A};
@@ -26,8 +27,8 @@ pub enum ShelterKind {
 
 /// A box (its entity's position and rotation, `half_extents` in metres; scale is ignored) that
 /// shelters from the global wind: a wall's lee or a room. Shelters act on the
-/// [`WindField`](super::WindField)'s log-law wind and turbulence, not on
-/// [`WindSource`](super::WindSource)s, so a fan indoors still blows. Placed at each fixed step,
+/// [`WindField`](super::field::WindField)'s log-law wind and turbulence, not on
+/// [`WindSource`](super::source::WindSource)s, so a fan indoors still blows. Placed at each fixed step,
 /// like sources.
 ///
 /// The lee of a wall: behind a solid fence the wind is reduced most at about one to three
@@ -66,11 +67,6 @@ impl Default for WindShelter {
     }
 }
 
-/// A size that is finite and ≥ 0, or 0.
-fn size(v: f32) -> f32 {
-    if v.is_finite() { v.max(0.0) } else { 0.0 }
-}
-
 impl WindShelter {
     /// A solid wall (or hedge, or house) of `half_extents`: its lee is 8 heights long and loses
     /// up to 85 % of the wind. Non-finite or negative sizes become 0 (no shelter).
@@ -96,12 +92,6 @@ impl WindShelter {
 /// The width of the transition at a room's walls, m.
 pub(crate) const ROOM_EDGE: f32 = 0.25;
 
-/// The fade (1 − s²)².
-fn fade(s: f32) -> f32 {
-    let t = (1.0 - s * s).max(0.0);
-    t * t
-}
-
 /// A shelter placed in the world for one fixed step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct PlacedShelter {
@@ -115,10 +105,9 @@ pub(crate) struct PlacedShelter {
 impl PlacedShelter {
     /// `shelter` at the position and rotation of `affine`; `None` if it shelters nothing.
     pub(crate) fn new(shelter: &WindShelter, affine: &Affine3A) -> Option<Self> {
-        let (_, rotation, origin) = affine.to_scale_rotation_translation();
-        let rotation = crate::guard::unit_quat(rotation)?;
+        let place = Placement::from_affine(affine)?;
         let half = shelter.half_extents.map(size);
-        if !origin.is_finite() || half.min_element() <= 0.0 {
+        if half.min_element() <= 0.0 {
             return None;
         }
         let reach = match shelter.kind {
@@ -131,8 +120,8 @@ impl PlacedShelter {
         Some(Self {
             kind: shelter.kind,
             half,
-            origin: origin.into(),
-            to_local: rotation.inverse(),
+            origin: place.origin,
+            to_local: place.to_local,
             reach2: reach * reach,
         })
     }

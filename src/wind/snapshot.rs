@@ -1,10 +1,14 @@
 //! Everything that decides the wind's velocities, as one value to save or send.
 
-use bevy::math::{DVec2, Vec2};
+use crate::error::InvalidValue;
+use bevy::math::DVec2;
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 
-use super::{WindConfig, WindError, WindField};
+use super::config::WindConfig;
+use super::ease::WindEasing;
+use super::error::WindError;
+use super::field::WindField;
 
 /// The wind's settings (seed included) and its clock: all a second machine needs to blow the
 /// same wind, bit for bit, as [`WindField::from_snapshot`] rebuilds it. With the `serde`
@@ -51,9 +55,9 @@ pub struct WindSnapshot {
     /// The wind time of that change, s.
     #[cfg_attr(feature = "serde", serde(default))]
     pub drift_since: f64,
-    /// A [`WindField::ease_to`] in progress: (target speed, unit direction, τ).
+    /// A [`WindField::ease_to`] in progress.
     #[cfg_attr(feature = "serde", serde(default))]
-    pub easing: Option<(f32, Vec2, f32)>,
+    pub easing: Option<WindEasing>,
 }
 
 impl WindField {
@@ -80,11 +84,11 @@ impl WindField {
             ("drift_since", snapshot.drift_since),
         ] {
             if !value.is_finite() {
-                return Err(WindError::Invalid {
+                return Err(WindError::Invalid(InvalidValue {
                     field,
                     value: value as f32,
                     reason: "must be finite",
-                });
+                }));
             }
         }
         let mut field = WindField::new(snapshot.config.clone())?;
@@ -93,7 +97,12 @@ impl WindField {
         field.paused = snapshot.paused;
         field.drift_base = snapshot.drift;
         field.drift_since = snapshot.drift_since;
-        if let Some((speed, direction, time_constant)) = snapshot.easing {
+        if let Some(WindEasing {
+            speed,
+            direction,
+            time_constant,
+        }) = snapshot.easing
+        {
             field.resume_easing(speed, direction, time_constant)?;
         }
         Ok(field)

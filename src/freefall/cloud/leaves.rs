@@ -6,7 +6,7 @@ use std::sync::Arc;
 use bevy::math::{Quat, Vec3};
 use bevy::tasks::{ParallelSliceMut, TaskPool};
 
-use super::{CloudLod, CloudRegion};
+use super::CloudRegion;
 use crate::freefall::markov::BoundedChain;
 use crate::freefall::model::FallModel;
 use crate::freefall::motion::FallScales;
@@ -15,11 +15,12 @@ use crate::freefall::random::FallRng;
 use crate::freefall::release::FallRelease;
 use crate::freefall::tiers::TierClock;
 use crate::lod::Focus;
+use crate::lod::LodTiers;
 use crate::wind::WindField;
 
 /// Leaves a parallel task steps together: big enough that the task costs little beside its
 /// work (≈ 50 µs), small enough that two threads share the work of a few thousand leaves.
-pub const CLOUD_CHUNK: usize = 512;
+pub(crate) const CLOUD_CHUNK: usize = 512;
 
 /// One leaf: its fall and when it was last stepped.
 #[derive(Clone, Debug)]
@@ -80,7 +81,7 @@ pub struct LeafPose {
 }
 
 /// The leaves of one cloud (see [`LeafCloud`](super::LeafCloud)): built by
-/// [`CloudLeaves::new`], stepped by [`CloudLeaves::step`], shown by [`CloudLeaves::poses`].
+/// a [`LeafCloud`](super::LeafCloud), stepped by [`CloudLeaves::step`], shown by [`CloudLeaves::poses`].
 #[derive(Clone, Debug)]
 pub struct CloudLeaves {
     leaves: Vec<Leaf>,
@@ -89,7 +90,7 @@ pub struct CloudLeaves {
     seed: u64,
     region: CloudRegion,
     ground: f32,
-    lod: CloudLod,
+    lod: LodTiers,
     recycle_after: Option<f32>,
     /// Seconds stepped, summed in f64.
     clock: f64,
@@ -107,7 +108,7 @@ impl CloudLeaves {
     /// turned at random, above `ground`. The rest of the description: `lod`, and
     /// `recycle_after` (a leaf resting that long is let go again from the region's top).
     #[allow(clippy::too_many_arguments)]
-    pub fn new(
+    pub(crate) fn new(
         model: &FallModel,
         scales: FallScales,
         chain: Arc<BoundedChain>,
@@ -115,7 +116,7 @@ impl CloudLeaves {
         seed: u64,
         region: CloudRegion,
         ground: f32,
-        lod: CloudLod,
+        lod: LodTiers,
         recycle_after: Option<f32>,
     ) -> Self {
         let mut cloud = Self {
@@ -174,13 +175,13 @@ impl CloudLeaves {
     }
 
     /// Advances the cloud by one fixed step `step.dt`: every leaf whose tier is due (see
-    /// [`CloudLod`]) is advanced over the time since its last step, in the wind where it is,
+    /// [`LodTiers`]) is advanced over the time since its last step, in the wind where it is,
     /// exactly as a single [`FallingObject`](crate::freefall::FallingObject) is. The leaves are
     /// independent, so the chunks run on `pool`'s threads (`None`: this thread) and the result
     /// is the same bits for any number of threads.
     pub fn step(&mut self, step: &CloudStep, pool: Option<&TaskPool>) -> CloudStepReport {
         let dt = if step.dt.is_finite() {
-            step.dt.clamp(0.0, crate::freefall::MAX_STEP)
+            step.dt.clamp(0.0, crate::freefall::release::MAX_STEP)
         } else {
             0.0
         };
@@ -322,7 +323,7 @@ struct ChunkContext<'a> {
     step: &'a CloudStep<'a>,
     clock: f64,
     steps: u64,
-    lod: CloudLod,
+    lod: LodTiers,
     recycle_after: Option<f32>,
 }
 
@@ -390,4 +391,11 @@ fn leaf_seed(seed: u64, index: usize, release: u32) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^ (z >> 31)
+}
+
+/// Limits and constants of [`CloudLeaves`].
+impl CloudLeaves {
+    /// Leaves a parallel task steps together: big enough that the task costs little beside its
+    /// work (≈ 50 µs), small enough that two threads share the work of a few thousand leaves.
+    pub const CHUNK: usize = CLOUD_CHUNK;
 }

@@ -4,22 +4,22 @@
 //! [`FallPath`](super::FallPath) (the same phase diagram, Markov chain, trajectory database,
 //! search tree and wind coupling as a single `FallingObject`), but the leaves live in one
 //! contiguous array in [`LeafCloudState`] instead of an entity each, are stepped in parallel
-//! chunks of [`CLOUD_CHUNK`], and are drawn (feature `render`, `gpu::LeafCloudRenderPlugin`) by
+//! chunks of [`CloudLeaves::CHUNK`](crate::freefall::cloud::CloudLeaves::CHUNK), and are drawn (feature `render`, `gpu::LeafCloudRenderPlugin`) by
 //! one draw of one mesh whose vertices read their leaf's pose from a storage buffer. No
 //! `Transform` per leaf, no change detection, no transform propagation: that is what 10 000
 //! single entities spend most of their frame on.
 //!
 //! # Levels of detail
 //!
-//! With a [`LodFocus`] (put it on the camera), each leaf's distance d from it picks a tier:
+//! With a [`LodFocus`](crate::lod::LodFocus) (put it on the camera), each leaf's distance d from it picks a tier:
 //!
 //! | tier | distance | stepped every | shown |
 //! |---|---|---|---|
-//! | full | d < [`CloudLod::near`] | fixed step | Bézier between its last two steps |
-//! | half | near ≤ d < [`CloudLod::far`] | 2nd fixed step | the same, over two steps |
+//! | full | d < [`LodTiers::near`] | fixed step | Bézier between its last two steps |
+//! | half | near ≤ d < [`LodTiers::far`] | 2nd fixed step | the same, over two steps |
 //! | quarter | d ≥ far | 4th fixed step | the same, over four steps |
 //!
-//! With a [`LodView`] beside the focus, a leaf off screen and beyond `near` is at the quarter
+//! With a [`LodView`](crate::lod::LodView) beside the focus, a leaf off screen and beyond `near` is at the quarter
 //! tier wherever it is.
 //!
 //! A leaf stepped less often is advanced over the whole time since its last step, so it follows
@@ -37,10 +37,11 @@
 mod leaves;
 mod plugin;
 
-pub use crate::lod::{LodFocus, LodView};
-pub use leaves::{CLOUD_CHUNK, CloudLeaves, CloudStep, CloudStepReport, LeafPose};
+use crate::lod::LodTiers;
+pub use leaves::{CloudLeaves, CloudStep, CloudStepReport, LeafPose};
 pub use plugin::{LeafCloudInvalid, LeafCloudPlugin, LeafCloudState};
 
+use crate::error::InvalidValue;
 use bevy::ecs::prelude::*;
 use bevy::math::Vec3;
 use bevy::reflect::Reflect;
@@ -48,11 +49,11 @@ use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::Transform;
 
 use super::model::FallModel;
-use super::plugin::FallingObject;
+use super::object::FallingObject;
 use super::regime::FreeFallError;
 
 /// Most leaves one cloud may hold.
-pub const MAX_CLOUD_LEAVES: u32 = 4_000_000;
+pub(crate) const MAX_CLOUD_LEAVES: u32 = 4_000_000;
 
 /// A box the leaves are let go in, world coordinates, m.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -73,12 +74,6 @@ impl Default for CloudRegion {
         }
     }
 }
-
-/// The levels of detail of a cloud's leaves: stepped every fixed step within `near` m of the
-/// [`LodFocus`], every second to `far`, every fourth beyond (see the [module](self)). The
-/// name clouds had first for [`LodTiers`](crate::lod::LodTiers), which single objects
-/// ([`FallLod`](crate::freefall::FallLod)) and cloths share.
-pub type CloudLod = crate::lod::LodTiers;
 
 /// A cloud of `count` falling leaves (or paper, confetti, ash) let go in `region`.
 ///
@@ -117,14 +112,14 @@ pub type CloudLod = crate::lod::LodTiers;
 pub struct LeafCloud {
     /// What each leaf is (its `seed` is mixed into the cloud's).
     pub object: FallingObject,
-    /// How many leaves (≤ [`MAX_CLOUD_LEAVES`]).
+    /// How many leaves (≤ [`LeafCloud::MAX_LEAVES`](crate::freefall::LeafCloud::MAX_LEAVES)).
     pub count: u32,
     /// Seed of the whole cloud.
     pub seed: u64,
     /// Where they are let go.
     pub region: CloudRegion,
     /// Levels of detail.
-    pub lod: CloudLod,
+    pub lod: LodTiers,
     /// A leaf resting this long, s, is let go again from the top of the region (`None`: leaves
     /// stay down until the wind lifts them).
     pub recycle_after: Option<f32>,
@@ -138,7 +133,7 @@ impl Default for LeafCloud {
             count: 10_000,
             seed: 0,
             region: CloudRegion::default(),
-            lod: CloudLod::default(),
+            lod: LodTiers::default(),
             recycle_after: None,
         }
     }
@@ -149,21 +144,24 @@ impl LeafCloud {
     /// builds the leaves above `ground`.
     ///
     /// # Errors
-    /// What [`FallingObject::regime`] rejects, a count above [`MAX_CLOUD_LEAVES`], a region
-    /// whose corners are not finite, beyond ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) or not
+    /// What [`FallingObject::regime`] rejects, a count above [`LeafCloud::MAX_LEAVES`](crate::freefall::LeafCloud::MAX_LEAVES), a region
+    /// whose corners are not finite, beyond ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE) or not
     /// ordered, negative or NaN LOD distances (far < near), a `recycle_after` not finite and
     /// ≥ 0, or a ground that is not finite.
     pub fn leaves(&self, model: &FallModel, ground: f32) -> Result<CloudLeaves, FreeFallError> {
-        let invalid = |field, value, reason| FreeFallError::Invalid {
-            field,
-            value,
-            reason,
+        let invalid = |field, value, reason| {
+            FreeFallError::Invalid(InvalidValue {
+                field,
+                value,
+                reason,
+            })
         };
         let regime = self.object.regime()?;
         if self.count > MAX_CLOUD_LEAVES {
             return Err(invalid("count", self.count as f32, "must be ≤ 4 000 000"));
         }
-        let within = |v: Vec3| v.is_finite() && v.abs().max_element() <= crate::MAX_COORDINATE;
+        let within =
+            |v: Vec3| v.is_finite() && v.abs().max_element() <= crate::guard::MAX_COORDINATE;
         if !within(self.region.min) {
             return Err(invalid(
                 "region.min",
@@ -178,7 +176,12 @@ impl LeafCloud {
                 "must be finite, within ±MAX_COORDINATE and ≥ region.min on every axis",
             ));
         }
-        if let Err((field, value, reason)) = self.lod.check() {
+        if let Err(InvalidValue {
+            field,
+            value,
+            reason,
+        }) = self.lod.check()
+        {
             let field = if field == "near" {
                 "lod.near"
             } else {
@@ -210,4 +213,10 @@ impl LeafCloud {
             self.recycle_after,
         ))
     }
+}
+
+/// Limits and constants of [`LeafCloud`].
+impl LeafCloud {
+    /// Most leaves one cloud may hold.
+    pub const MAX_LEAVES: u32 = MAX_CLOUD_LEAVES;
 }

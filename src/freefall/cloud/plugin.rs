@@ -9,10 +9,13 @@ use bevy::time::{Fixed, Time};
 
 use super::leaves::{CloudLeaves, CloudStep, CloudStepReport, LeafPose};
 use super::{CloudRegion, LeafCloud};
-use crate::WindfallSystems;
+use crate::freefall::model::FallModel;
+use crate::freefall::object::FreeFallSettings;
 use crate::freefall::path::WindTilt;
-use crate::freefall::{FallModel, FreeFallError, FreeFallSettings};
+use crate::freefall::regime::FreeFallError;
+use crate::lifecycle::Described;
 use crate::lod::{LodFocus, LodTiers};
+use crate::schedule::WindfallSystems;
 use crate::wind::WindField;
 
 /// Runtime state of a [`LeafCloud`] (required component): its leaves, what the last step did
@@ -27,8 +30,6 @@ pub struct LeafCloudState {
     /// What the last fixed step did.
     #[reflect(ignore)]
     last: CloudStepReport,
-    #[reflect(ignore)]
-    released_for: Option<LeafCloud>,
 }
 
 impl LeafCloudState {
@@ -54,15 +55,18 @@ impl LeafCloudState {
 #[reflect(Component, Debug)]
 pub struct LeafCloudInvalid(pub FreeFallError);
 
-/// Steps every [`LeafCloud`] on the fixed timestep (in [`WindfallSystems::Simulate`]) and poses
-/// its leaves once per frame (in [`WindfallSystems::WriteBack`]).
-#[derive(Default)]
-pub struct LeafCloudPlugin;
+crate::lifecycle::invalid_marker!(LeafCloudInvalid, FreeFallError);
+
+crate::schedule::simulation_plugin!(
+    /// Steps every [`LeafCloud`] on the fixed timestep (in [`WindfallSystems::Simulate`]) and poses
+    /// its leaves once per frame (in [`WindfallSystems::WriteBack`]).
+    LeafCloudPlugin
+);
 
 impl Plugin for LeafCloudPlugin {
     fn build(&self, app: &mut App) {
-        crate::configure_sets(app);
-        let schedule = crate::simulation_schedule(app);
+        let schedule = self.configure(app);
+        crate::lifecycle::observe::<LeafCloud>(app);
         if !app.world().contains_resource::<FallModel>() {
             app.insert_resource(FallModel::default());
         }
@@ -74,7 +78,6 @@ impl Plugin for LeafCloudPlugin {
             .register_type::<CloudRegion>()
             .register_type::<LodTiers>()
             .init_resource::<FreeFallSettings>()
-            .add_observer(release_on_insert)
             // Only with a cloud to move (a system with nothing to do still costs a wake-up).
             .add_systems(
                 schedule,
@@ -85,7 +88,8 @@ impl Plugin for LeafCloudPlugin {
             .add_systems(
                 PostUpdate,
                 (
-                    release_clouds.run_if(any_with_component::<LeafCloud>),
+                    crate::lifecycle::set_up_changed::<LeafCloud>
+                        .run_if(any_with_component::<LeafCloud>),
                     pose_clouds.run_if(any_with_component::<LeafCloudState>),
                 )
                     .chain()
@@ -94,73 +98,43 @@ impl Plugin for LeafCloudPlugin {
     }
 }
 
-fn release_on_insert(
-    event: On<Insert, LeafCloud>,
-    mut commands: Commands,
-    mut clouds: Query<(&LeafCloud, &mut LeafCloudState)>,
-    settings: Option<Res<FreeFallSettings>>,
-    model: Option<Res<FallModel>>,
-) {
-    let Some(model) = model else {
-        return;
-    };
-    let ground = settings.map_or(0.0, |s| s.ground_height);
-    if let Ok((cloud, mut state)) = clouds.get_mut(event.entity) {
-        release(
-            &mut commands,
-            event.entity,
-            cloud,
-            &mut state,
-            ground,
-            &model,
-        );
+impl Described for LeafCloud {
+    type Invalid = LeafCloudInvalid;
+    type Key = LeafCloud;
+    type Data = &'static mut LeafCloudState;
+    type Context = (
+        Option<Res<'static, FreeFallSettings>>,
+        Option<Res<'static, FallModel>>,
+    );
+    const SUBJECT: &'static str = "LeafCloud";
+    const CONSEQUENCE: &'static str = "it does not fall";
+
+    fn key(&self) -> LeafCloud {
+        self.clone()
     }
-}
 
-fn release_clouds(
-    mut commands: Commands,
-    mut clouds: Query<(Entity, &LeafCloud, &mut LeafCloudState), Changed<LeafCloud>>,
-    settings: Option<Res<FreeFallSettings>>,
-    model: Option<Res<FallModel>>,
-) {
-    let Some(model) = model else {
-        return;
-    };
-    let ground = settings.map_or(0.0, |s| s.ground_height);
-    for (entity, cloud, mut state) in &mut clouds {
-        if !state.released_for.as_ref().is_some_and(|r| same(r, cloud)) {
-            release(&mut commands, entity, cloud, &mut state, ground, &model);
-        }
-    }
-}
-
-/// The same description, NaN fields included (a NaN is not equal to itself, so `==` alone would
-/// release an invalid cloud again, and log it again, every time it is touched).
-fn same(a: &LeafCloud, b: &LeafCloud) -> bool {
-    a == b || format!("{a:?}") == format!("{b:?}")
-}
-
-fn release(
-    commands: &mut Commands,
-    entity: Entity,
-    cloud: &LeafCloud,
-    state: &mut LeafCloudState,
-    ground: f32,
-    model: &FallModel,
-) {
-    state.released_for = Some(cloud.clone());
-    state.poses.clear();
-    state.last = CloudStepReport::default();
-    match cloud.leaves(model, ground) {
-        Ok(leaves) => {
-            state.leaves = Some(leaves);
-            commands.entity(entity).remove::<LeafCloudInvalid>();
-        }
-        Err(error) => {
-            bevy::log::warn!("LeafCloud {entity}: {error}; it does not fall");
-            state.leaves = None;
-            commands.entity(entity).insert(LeafCloudInvalid(error));
-        }
+    /// Lets every leaf go; without a model (removed by the user) nothing is released.
+    fn set_up(
+        &self,
+        _: Entity,
+        mut state: Mut<LeafCloudState>,
+        (settings, model): &mut (Option<Res<FreeFallSettings>>, Option<Res<FallModel>>),
+        _: &mut Commands,
+    ) -> Option<Result<(), FreeFallError>> {
+        let model = model.as_deref()?;
+        let ground = settings.as_ref().map_or(0.0, |s| s.ground_height);
+        state.poses.clear();
+        state.last = CloudStepReport::default();
+        Some(match self.leaves(model, ground) {
+            Ok(leaves) => {
+                state.leaves = Some(leaves);
+                Ok(())
+            }
+            Err(error) => {
+                state.leaves = None;
+                Err(error)
+            }
+        })
     }
 }
 
@@ -197,10 +171,10 @@ fn step_clouds(
 
 fn pose_clouds(
     mut clouds: Query<&mut LeafCloudState>,
-    schedule: Option<Res<crate::WindfallSchedule>>,
+    schedule: Option<Res<crate::schedule::WindfallSchedule>>,
     fixed: Option<Res<Time<Fixed>>>,
 ) {
-    let s = crate::overstep(schedule.as_deref(), fixed.as_deref());
+    let s = crate::schedule::overstep(schedule.as_deref(), fixed.as_deref());
     let pool = ComputeTaskPool::try_get().map(|p| &**p);
     for mut state in &mut clouds {
         let state = &mut *state;

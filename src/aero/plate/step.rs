@@ -1,232 +1,12 @@
-//! A rigid plate with six degrees of freedom driven by per-face lift and drag: a physically
-//! falling leaf, card or coin.
+//! How a [`RigidPlate`] moves: the per-face load of eq. 3.1 summed into a force and a torque,
+//! and the six-degree-of-freedom step with implicit drag that never gains energy from still air.
 
 use bevy::math::{Mat3, Quat, Vec3};
-use bevy::reflect::Reflect;
 
-use super::coefficients::check;
-pub use super::coefficients::{AeroCoefficients, AeroError, MAX_COEFFICIENT, MAX_FLUID_DENSITY};
-use super::force::{drag_rate, face_force};
-use crate::freefall::{MAX_SIZE, MIN_SIZE};
-
-/// One face of a body, in the body's frame.
-#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
-pub struct Face {
-    /// Centre, m.
-    pub center: Vec3,
-    /// Unit normal (either side).
-    pub normal: Vec3,
-    /// Area, m².
-    pub area: f32,
-}
-
-/// A rigid plate: faces, mass, principal moments of inertia (body axes), coefficients.
-#[derive(Clone, Debug, PartialEq, Reflect)]
-pub struct RigidPlate {
-    faces: Vec<Face>,
-    mass: f32,
-    inertia: Vec3,
-    coefficients: AeroCoefficients,
-}
-
-/// Position, velocity, orientation and angular velocity (world frame).
-#[derive(Clone, Copy, Debug, PartialEq, Reflect)]
-pub struct PlateState {
-    /// Centre of mass, m.
-    pub position: Vec3,
-    /// m/s.
-    pub velocity: Vec3,
-    /// Body to world.
-    pub rotation: Quat,
-    /// rad/s, world frame.
-    pub angular_velocity: Vec3,
-}
-
-impl Default for PlateState {
-    fn default() -> Self {
-        Self {
-            position: Vec3::ZERO,
-            velocity: Vec3::ZERO,
-            rotation: Quat::IDENTITY,
-            angular_velocity: Vec3::ZERO,
-        }
-    }
-}
-
-/// Largest speed (m/s) or spin (rad/s) a [`PlateState`] may start from.
-pub const MAX_STATE_SPEED: f32 = 1.0e6;
-
-impl PlateState {
-    /// Checks that the state can be simulated: a finite position within
-    /// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE), a rotation that is finite and not zero (any
-    /// length: it is normalised), and finite velocities within [`MAX_STATE_SPEED`]. The field
-    /// names start with `state.`.
-    pub fn validate(&self) -> Result<(), AeroError> {
-        let invalid = |field, value, reason| AeroError::Invalid {
-            field,
-            value,
-            reason,
-        };
-        if let Some(value) = crate::guard::bad_position(self.position) {
-            return Err(invalid(
-                "state.position",
-                value,
-                "must be finite and within ±1e7 m",
-            ));
-        }
-        if crate::guard::unit_quat(self.rotation).is_none() {
-            return Err(invalid(
-                "state.rotation",
-                self.rotation.length(),
-                "must be a finite, non-zero quaternion",
-            ));
-        }
-        for (field, v) in [
-            ("state.velocity", self.velocity),
-            ("state.angular_velocity", self.angular_velocity),
-        ] {
-            let largest = v.abs().max_element();
-            if largest.is_nan() || largest > MAX_STATE_SPEED {
-                return Err(invalid(field, largest, "must be finite and within ±1e6"));
-            }
-        }
-        Ok(())
-    }
-}
-
-/// Largest substeps per step; past it the step's substeps grow (the drag stays implicit).
-pub const MAX_SUBSTEPS: u32 = 256;
-/// Largest h × (lift rate) a substep may take.
-pub const LIFT_STEP: f32 = 0.25;
+use super::super::force::{drag_rate, face_force};
+use super::{LIFT_STEP, MAX_SUBSTEPS, PlateState, RigidPlate};
 
 impl RigidPlate {
-    /// A `length` × `width` × `thickness` plate of `density` (kg/m³), lying in its local XZ plane
-    /// (normal +Y, length along Z), split into `cells` × `cells` faces.
-    pub fn rectangle(
-        length: f32,
-        width: f32,
-        thickness: f32,
-        density: f32,
-        coefficients: AeroCoefficients,
-        cells: usize,
-    ) -> Result<Self, AeroError> {
-        for (field, value) in [
-            ("length", length),
-            ("width", width),
-            ("thickness", thickness),
-        ] {
-            check(
-                field,
-                value,
-                (MIN_SIZE..=MAX_SIZE).contains(&value),
-                "must be within 1e-7..1e3 m",
-            )?;
-        }
-        check(
-            "density",
-            density,
-            density > 0.0 && density <= 1e7,
-            "must be > 0 and ≤ 1e7 kg/m³",
-        )?;
-        // Checked on what the solver divides by: the mass, in f64.
-        let mass = f64::from(density) * f64::from(length) * f64::from(width) * f64::from(thickness);
-        if mass < 1e-30 {
-            return Err(AeroError::Invalid {
-                field: "density",
-                value: density,
-                reason: "the plate's mass (density × length × width × thickness) must be ≥ 1e-30 kg",
-            });
-        }
-        coefficients.validate()?;
-        let cells = cells.clamp(1, 64);
-        let area = length * width / (cells * cells) as f32;
-        let mut faces = Vec::with_capacity(cells * cells);
-        for i in 0..cells {
-            for j in 0..cells {
-                let x = width * ((i as f32 + 0.5) / cells as f32 - 0.5);
-                let z = length * ((j as f32 + 0.5) / cells as f32 - 0.5);
-                faces.push(Face {
-                    center: Vec3::new(x, 0.0, z),
-                    normal: Vec3::Y,
-                    area,
-                });
-            }
-        }
-        let mass = density * length * width * thickness;
-        // Thin box: I_x = m (t² + L²)/12, I_y = m (w² + L²)/12, I_z = m (w² + t²)/12.
-        let inertia = mass / 12.0
-            * Vec3::new(
-                thickness * thickness + length * length,
-                width * width + length * length,
-                width * width + thickness * thickness,
-            );
-        Self::new(faces, mass, inertia, coefficients)
-    }
-
-    /// A body from its faces (body frame), mass (kg), principal moments (kg m²) and
-    /// coefficients. Faces with zero area or a zero or non-finite normal exert no force; a
-    /// finite normal of any length (subnormal to `f32::MAX`) is normalised.
-    pub fn new(
-        faces: Vec<Face>,
-        mass: f32,
-        inertia: Vec3,
-        coefficients: AeroCoefficients,
-    ) -> Result<Self, AeroError> {
-        check("mass", mass, mass > 0.0, "must be finite and > 0")?;
-        for (field, value) in [
-            ("inertia.x", inertia.x),
-            ("inertia.y", inertia.y),
-            ("inertia.z", inertia.z),
-        ] {
-            check(field, value, value > 0.0, "must be finite and > 0")?;
-        }
-        coefficients.validate()?;
-        // Faces that can exert no force are dropped, so no NaN can reach the solver; the rest
-        // get unit normals.
-        let faces = faces
-            .into_iter()
-            .filter(|f| f.center.is_finite() && f.area.is_finite() && f.area > 0.0)
-            .filter_map(|f| {
-                let normal = crate::guard::unit_vec3(f.normal)?;
-                Some(Face { normal, ..f })
-            })
-            .collect();
-        Ok(Self {
-            faces,
-            mass,
-            inertia,
-            coefficients,
-        })
-    }
-
-    /// Mass, kg.
-    pub fn mass(&self) -> f32 {
-        self.mass
-    }
-
-    /// Total face area, m².
-    pub fn area(&self) -> f32 {
-        self.faces.iter().map(|f| f.area.max(0.0)).sum()
-    }
-
-    /// The faces, body frame.
-    pub fn faces(&self) -> &[Face] {
-        &self.faces
-    }
-
-    /// Coefficients.
-    pub fn coefficients(&self) -> &AeroCoefficients {
-        &self.coefficients
-    }
-
-    /// Replaces the coefficients (live tuning); a bad value is refused by name and nothing
-    /// changes.
-    pub fn set_coefficients(&mut self, coefficients: AeroCoefficients) -> Result<(), AeroError> {
-        coefficients.validate()?;
-        self.coefficients = coefficients;
-        Ok(())
-    }
-
     /// Kinetic plus potential energy, J (potential measured from the origin against
     /// `gravity`).
     pub fn energy(&self, s: &PlateState, gravity: Vec3) -> f32 {
@@ -277,7 +57,7 @@ impl RigidPlate {
     /// Each substep solves the drag implicitly (a 6×6 linear system in the new linear and angular
     /// velocity with each face's drag coefficient frozen: unconditionally stable, and in a
     /// uniform wind it relaxes toward the wind without overshoot) and takes the lift explicitly,
-    /// with substeps so that h × lift rate ≤ [`LIFT_STEP`]. Aerodynamic forces without wind only
+    /// with substeps so that h × lift rate ≤ 0.25. Aerodynamic forces without wind only
     /// remove energy (drag opposes each face's motion, lift is perpendicular to it); when
     /// `wind_is_still` is true, or the wind is the same at every face, a substep that would add
     /// energy (in the wind's frame) through rounding or the explicit lift has its velocities
@@ -285,7 +65,7 @@ impl RigidPlate {
     ///
     /// A non-finite or non-positive `dt`, a non-finite `gravity` or a state that fails
     /// [`PlateState::validate`] leaves `s` as it is (the plugin reports such a body with
-    /// [`AeroBodyInvalid`](super::AeroBodyInvalid)).
+    /// [`AeroBodyInvalid`](crate::aero::AeroBodyInvalid)).
     pub fn step(
         &self,
         s: &mut PlateState,
@@ -501,7 +281,6 @@ impl RigidPlate {
     }
 }
 
-/// X with X a = r × a.
 fn cross_matrix(r: Vec3) -> Mat3 {
     Mat3::from_cols(
         Vec3::new(0.0, r.z, -r.y),

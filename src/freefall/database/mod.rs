@@ -24,21 +24,27 @@
 
 use bevy::math::Vec2;
 
-use super::ode::{Integrator, OdeState, TanabeKaneko, trajectory};
+use super::ode::TanabeKaneko;
 use super::random::FallRng;
 
+mod kmeans;
+mod profiles;
+pub(crate) use kmeans::kmeans;
+use kmeans::{distance_squared, scale, search_space, standardising_weights};
+use profiles::{flutter_profile, harmonic_segment, tumble_profile};
+
 /// Samples per segment (positions and angles, both ends included).
-pub const SEGMENT_SAMPLES: usize = 33;
+pub(crate) const SEGMENT_SAMPLES: usize = 33;
 
 /// Components of a feature vector: glide Δx, drop Δy, modulation γ, angle half-range Θ.
-pub const FEATURES: usize = 4;
+pub(crate) const FEATURES: usize = 4;
 
 /// A feature vector (see the module docs).
-pub type Feature = [f32; FEATURES];
+pub(crate) type Feature = [f32; FEATURES];
 
 /// One swing from turning point to turning point, gliding right (+x), in the fall's units.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Segment {
+pub(crate) struct Segment {
     /// α = A_x / U of eq. 5.
     pub alpha: f32,
     /// γ = A_y / U of eq. 5.
@@ -95,11 +101,11 @@ impl Default for DatabaseConfig {
 }
 
 /// Members of the nearest cluster the search picks from at random.
-pub const CANDIDATES: usize = 4;
+pub(crate) const CANDIDATES: usize = 4;
 
 /// Largest α and γ accepted in a [`DatabaseConfig`]: glides of 200 swing lengths per drop are
 /// far beyond any fall; larger values are dropped.
-pub const MAX_DATABASE_PARAMETER: f32 = 100.0;
+pub(crate) const MAX_DATABASE_PARAMETER: f32 = 100.0;
 
 /// Segments, their k-means clusters, and the lookup the search tree uses.
 #[derive(Clone, Debug, PartialEq)]
@@ -207,13 +213,18 @@ impl TrajectoryDatabase {
         }
     }
 
-    /// All segments.
-    pub fn segments(&self) -> &[Segment] {
-        &self.segments
+    /// How many segments it holds (the eq. 5 swings of §2.3).
+    pub fn segment_count(&self) -> usize {
+        self.segments.len()
+    }
+
+    /// How many clusters its search tree has.
+    pub fn cluster_count(&self) -> usize {
+        self.centroids.len()
     }
 
     /// Segment `index` (clamped to the last one).
-    pub fn segment(&self, index: u32) -> &Segment {
+    pub(crate) fn segment(&self, index: u32) -> &Segment {
         &self.segments[(index as usize).min(self.segments.len() - 1)]
     }
 
@@ -227,19 +238,16 @@ impl TrajectoryDatabase {
         &self.tumble_shape
     }
 
-    /// Cluster centres, in standardised feature units.
-    pub fn centroids(&self) -> &[Feature] {
-        &self.centroids
-    }
-
+    #[cfg(test)]
     /// Segment indices of each cluster.
-    pub fn members(&self) -> &[Vec<u32>] {
+    pub(crate) fn members(&self) -> &[Vec<u32>] {
         &self.members
     }
 
+    #[cfg(test)]
     /// The cluster whose centre is nearest to `key` (the search key of §2.3.1, a feature vector
     /// in the fall's units; non-finite components count as 0).
-    pub fn nearest_cluster(&self, key: &Feature) -> usize {
+    pub(crate) fn nearest_cluster(&self, key: &Feature) -> usize {
         self.nearest_to_scaled(&self.scaled_key(key))
     }
 
@@ -257,7 +265,7 @@ impl TrajectoryDatabase {
 
     /// The search tree's child for `key`: one of the [`CANDIDATES`] members of the nearest
     /// cluster that are nearest to the key, at random.
-    pub fn find(&self, key: &Feature, rng: &mut FallRng) -> u32 {
+    pub(crate) fn find(&self, key: &Feature, rng: &mut FallRng) -> u32 {
         let scaled = self.scaled_key(key);
         let members = &self.members[self.nearest_to_scaled(&scaled)];
         let mut best = [(u32::MAX, f32::INFINITY); CANDIDATES];
@@ -282,14 +290,6 @@ impl TrajectoryDatabase {
         scale(&search_space(&key), &self.weights)
     }
 
-    /// A random member of cluster `cluster` (clamped to the last cluster): one child of the
-    /// search tree.
-    pub fn pick(&self, cluster: usize, rng: &mut FallRng) -> u32 {
-        let members = &self.members[cluster.min(self.members.len() - 1)];
-        let pick = ((rng.uniform() * members.len() as f32) as usize).min(members.len() - 1);
-        members[pick]
-    }
-
     /// Approximate heap size, bytes.
     pub fn size_bytes(&self) -> usize {
         self.segments.len() * std::mem::size_of::<Segment>()
@@ -298,232 +298,9 @@ impl TrajectoryDatabase {
     }
 }
 
-/// Eq. 5 in the fall's units between the turning points π/2 and 3π/2, with an angle profile.
-fn harmonic_segment(alpha: f32, gamma: f32, flutter: &[f32; SEGMENT_SAMPLES]) -> Segment {
-    let at = |tau: f32| Vec2::new(-alpha * tau.sin(), -tau - 0.5 * gamma * (2.0 * tau).cos());
-    let start = at(std::f32::consts::FRAC_PI_2);
-    let points = std::array::from_fn(|i| {
-        let s = i as f32 / (SEGMENT_SAMPLES - 1) as f32;
-        at(std::f32::consts::FRAC_PI_2 + std::f32::consts::PI * s) - start
-    });
-    let (first, last) = (flutter[0], flutter[SEGMENT_SAMPLES - 1]);
-    Segment {
-        alpha,
-        gamma,
-        points,
-        angle_range: 0.5 * (last - first).abs(),
-        angle_shape: progress(flutter),
-    }
-}
-
-/// A profile's progress from its first to its last value, 0 → 1, made monotone (a running
-/// maximum) so a swing never turns back within itself.
-fn progress(profile: &[f32; SEGMENT_SAMPLES]) -> [f32; SEGMENT_SAMPLES] {
-    let (first, last) = (profile[0], profile[SEGMENT_SAMPLES - 1]);
-    let span = last - first;
-    let mut running = 0.0f32;
-    std::array::from_fn(|i| {
-        let s = if span.abs() > 1e-9 {
-            ((profile[i] - first) / span).clamp(0.0, 1.0)
-        } else {
-            i as f32 / (SEGMENT_SAMPLES - 1) as f32
-        };
-        running = running.max(s);
-        if i == SEGMENT_SAMPLES - 1 {
-            1.0
-        } else {
-            running
-        }
-    })
-}
-
-/// The last complete half-swing (between sign changes of u) of a fluttering run of eq. 4,
-/// resampled to [`SEGMENT_SAMPLES`] equal times, signed so the swing goes right. `None` if the
-/// run does not flutter.
-fn flutter_profile(params: &TanabeKaneko) -> Option<[f32; SEGMENT_SAMPLES]> {
-    let start = OdeState {
-        theta: 0.3,
-        v: -0.01,
-        ..OdeState::default()
-    };
-    let run = trajectory(params, start, 1e-3, 12.0, Integrator::Rk4)
-        .expect("12 s in 1 ms steps is within the budget");
-    let turns: Vec<usize> = (1..run.len())
-        .filter(|&i| (run[i - 1].u < 0.0) != (run[i].u < 0.0))
-        .collect();
-    let (&a, &b) = (
-        turns.get(turns.len().checked_sub(3)?)?,
-        turns.get(turns.len() - 2)?,
-    );
-    let swing = &run[a..=b];
-    if swing.iter().any(|s| !s.is_finite()) || swing.len() < 4 {
-        return None;
-    }
-    let sign = if swing[swing.len() / 2].u >= 0.0 {
-        1.0
-    } else {
-        -1.0
-    };
-    let profile = resample(swing, |s| (sign * s.theta) as f32);
-    // A swing to the right turns the plate counter-clockwise (as a right tumble does).
-    if profile[SEGMENT_SAMPLES - 1] - profile[0] > 0.05 {
-        Some(profile)
-    } else if profile[0] - profile[SEGMENT_SAMPLES - 1] > 0.05 {
-        Some(profile.map(|a| -a))
-    } else {
-        None
-    }
-}
-
-/// One half-turn of a tumbling run of eq. 4 (θ advancing by π), as progress 0 → 1, resampled to
-/// equal times. Falls back to a uniform turn if the run does not tumble.
-fn tumble_profile(params: &TanabeKaneko) -> [f32; SEGMENT_SAMPLES] {
-    let uniform = std::array::from_fn(|i| i as f32 / (SEGMENT_SAMPLES - 1) as f32);
-    let start = OdeState {
-        theta: 0.3,
-        v: -0.01,
-        ..OdeState::default()
-    };
-    let run = trajectory(params, start, 1e-3, 12.0, Integrator::Rk4)
-        .expect("12 s in 1 ms steps is within the budget");
-    let Some(last) = run.last() else {
-        return uniform;
-    };
-    let direction = last.theta.signum();
-    let half_turn = |s: &OdeState| (direction * s.theta / std::f64::consts::PI).floor();
-    let marks: Vec<usize> = (1..run.len())
-        .filter(|&i| half_turn(&run[i]) != half_turn(&run[i - 1]))
-        .collect();
-    if marks.len() < 4 || !last.is_finite() {
-        return uniform;
-    }
-    let swing = &run[marks[marks.len() - 3]..=marks[marks.len() - 2]];
-    let theta0 = swing[0].theta;
-    progress(&resample(swing, |s| {
-        (direction * (s.theta - theta0)) as f32
-    }))
-}
-
-fn resample(run: &[OdeState], value: impl Fn(&OdeState) -> f32) -> [f32; SEGMENT_SAMPLES] {
-    std::array::from_fn(|i| {
-        let x = i as f32 / (SEGMENT_SAMPLES - 1) as f32 * (run.len() - 1) as f32;
-        let j = (x as usize).min(run.len() - 2);
-        let f = x - j as f32;
-        value(&run[j]) * (1.0 - f) + value(&run[j + 1]) * f
-    })
-}
-
-/// The feature vector as the search compares it: the glide on a log scale.
-fn search_space(f: &Feature) -> Feature {
-    [f[0].abs().max(1e-3).ln(), f[1], f[2], f[3]]
-}
-
-/// 1 / standard deviation of each component over `features` (0 where it is constant), the
-/// glide's doubled.
-fn standardising_weights(features: &[Feature]) -> Feature {
-    let n = features.len().max(1) as f32;
-    std::array::from_fn(|c| {
-        let mean = features.iter().map(|f| f[c]).sum::<f32>() / n;
-        let var = features.iter().map(|f| (f[c] - mean).powi(2)).sum::<f32>() / n;
-        let emphasis = if c == 0 { 2.0 } else { 1.0 };
-        if var > 1e-12 {
-            emphasis / var.sqrt()
-        } else {
-            0.0
-        }
-    })
-}
-
-fn scale(f: &Feature, weights: &Feature) -> Feature {
-    std::array::from_fn(|c| f[c] * weights[c])
-}
-
-fn distance_squared<const N: usize>(a: &[f32; N], b: &[f32; N]) -> f32 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
-}
-
-/// Lloyd's k-means with k-means++ seeding from a seeded stream; returns centres and labels.
-pub(crate) fn kmeans<const N: usize>(
-    points: &[[f32; N]],
-    k: usize,
-    seed: u64,
-) -> (Vec<[f32; N]>, Vec<usize>) {
-    if points.is_empty() {
-        return (Vec::new(), Vec::new());
-    }
-    let k = k.min(points.len());
-    let mut rng = FallRng::new(seed);
-    let mut centres = vec![points[(rng.uniform() * points.len() as f32) as usize % points.len()]];
-    while centres.len() < k {
-        let d2: Vec<f32> = points
-            .iter()
-            .map(|p| {
-                centres
-                    .iter()
-                    .map(|c| distance_squared(c, p))
-                    .fold(f32::INFINITY, f32::min)
-            })
-            .collect();
-        let total: f32 = d2.iter().sum();
-        let mut target = rng.uniform() * total;
-        let mut chosen = points.len() - 1;
-        for (i, d) in d2.iter().enumerate() {
-            if target < *d {
-                chosen = i;
-                break;
-            }
-            target -= d;
-        }
-        centres.push(points[chosen]);
-    }
-    let mut labels = vec![0; points.len()];
-    for _ in 0..100 {
-        let mut changed = false;
-        for (label, p) in labels.iter_mut().zip(points) {
-            let nearest = (0..k)
-                .min_by(|&a, &b| {
-                    distance_squared(&centres[a], p).total_cmp(&distance_squared(&centres[b], p))
-                })
-                .unwrap_or(0);
-            changed |= nearest != *label;
-            *label = nearest;
-        }
-        for (c, centre) in centres.iter_mut().enumerate() {
-            let (sum, n) = points.iter().zip(&labels).filter(|(_, l)| **l == c).fold(
-                ([0.0f32; N], 0),
-                |(mut s, n), (p, _)| {
-                    s.iter_mut().zip(p).for_each(|(a, b)| *a += b);
-                    (s, n + 1)
-                },
-            );
-            if n > 0 {
-                *centre = sum.map(|s| s / n as f32);
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    (centres, labels)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn kmeans_separates_two_blobs() {
-        let mut points: Vec<[f32; 2]> = (0..20).map(|i| [i as f32 * 0.01, 0.0]).collect();
-        points.extend((0..20).map(|i| [10.0 + i as f32 * 0.01, 0.0]));
-        let (centres, labels) = kmeans(&points, 2, 1);
-        assert!(labels[..20].iter().all(|l| *l == labels[0]));
-        assert!(
-            labels[20..]
-                .iter()
-                .all(|l| *l == labels[20] && *l != labels[0])
-        );
-        let mut xs: Vec<f32> = centres.iter().map(|c| c[0]).collect();
-        xs.sort_by(f32::total_cmp);
-        assert!((xs[0] - 0.095).abs() < 1e-4 && (xs[1] - 10.095).abs() < 1e-4);
-    }
+/// Limits and constants of [`DatabaseConfig`].
+impl DatabaseConfig {
+    /// Largest α and γ accepted in a [`DatabaseConfig`]: glides of 200 swing lengths per drop are
+    /// far beyond any fall; larger values are dropped.
+    pub const MAX_PARAMETER: f32 = MAX_DATABASE_PARAMETER;
 }

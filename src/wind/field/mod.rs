@@ -1,25 +1,24 @@
 //! The [`WindField`] resource: mean log-law wind plus spectral turbulence, sampled anywhere.
 
+use crate::error::InvalidValue;
 use bevy::ecs::reflect::ReflectResource;
 use bevy::ecs::resource::Resource;
 use bevy::math::{DVec2, Vec2, Vec3};
 use bevy::reflect::Reflect;
 
-use super::config::{SpatialMode, TemporalMode, WindConfig, WindError};
-use super::ease::Ease;
+use super::config::{
+    MAX_REFERENCE_SPEED, MAX_TURBULENCE_INTENSITY, SpatialMode, TemporalMode, WindConfig,
+};
+use super::ease::WindEasing;
+use super::error::WindError;
 use super::profile;
-use super::pulse::Pulse;
 use super::shelter::PlacedShelter;
 use super::source::PlacedSource;
 use crate::spectrum::{GridShape, SpectrumError, Synthesizer};
 
-/// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
-pub const MAX_REFERENCE_SPEED: f32 = 1.0e4;
-/// Highest accepted `turbulence_intensity`.
-pub const MAX_TURBULENCE_INTENSITY: f32 = 10.0;
 /// Bound of the wind clock, s (about 31 700 years): [`WindField::advance`] and
 /// [`WindField::set_clock`] clamp to ±this, so the clock and [`WindField::time`] stay finite.
-pub const MAX_CLOCK: f64 = 1.0e12;
+pub(crate) const MAX_CLOCK: f64 = 1.0e12;
 
 /// Wind velocity anywhere in space and time: a logarithmic mean profile (eq. 10 of
 /// `free-fall-motion-synthesis.txt`) plus three independent 1/f^β turbulence components with the
@@ -84,7 +83,7 @@ pub struct WindField {
     /// The [`WindSource`](super::WindSource)s placed at the last fixed step, by entity.
     sources: Vec<PlacedSource>,
     /// Where [`WindField::ease_to`] is taking the mean wind.
-    ease: Option<Ease>,
+    ease: Option<WindEasing>,
     /// The [`WindShelter`](super::WindShelter)s placed at the last fixed step.
     shelters: Vec<PlacedShelter>,
     /// The clock before the last [`WindField::advance`]: when the step now simulated began.
@@ -97,6 +96,7 @@ pub struct WindField {
     pub(super) drift_since: f64,
 }
 
+mod live;
 mod read;
 
 /// Numbers the fields made by [`WindField::new`].
@@ -112,11 +112,11 @@ impl WindField {
         let dims = grid_dims(&config);
         let shape = GridShape::new(&dims);
         let synth = Synthesizer::shared(&dims, config.beta, config.fft).map_err(|e| match e {
-            SpectrumError::Beta(beta) => WindError::Invalid {
+            SpectrumError::Beta(beta) => WindError::Invalid(InvalidValue {
                 field: "beta",
                 value: beta,
                 reason: "must be finite and ≥ 0",
-            },
+            }),
             SpectrumError::NoAxis
             | SpectrumError::TooManyAxes { .. }
             | SpectrumError::AxisTooShort { .. } => WindError::GridAxis {
@@ -216,176 +216,6 @@ impl WindField {
         profile::log_law(self.friction_velocity, self.config.roughness, height)
     }
 
-    /// Changes the mean speed at the reference height at once, keeping the turbulence pattern
-    /// (and ending any [`Self::ease_to`]).
-    pub fn set_reference_speed(&mut self, speed: f32) -> Result<(), WindError> {
-        let mut config = self.config.clone();
-        config.reference_speed = speed;
-        validate_extra(&config)?;
-        self.rebase_drift();
-        self.config = config;
-        self.ease = None;
-        self.derive();
-        Ok(())
-    }
-
-    /// Changes the horizontal direction (x, z) of the mean wind at once, keeping the pattern
-    /// (and ending any [`Self::ease_to`]).
-    pub fn set_direction(&mut self, direction: Vec2) -> Result<(), WindError> {
-        let mut config = self.config.clone();
-        config.direction = direction;
-        validate_extra(&config)?;
-        self.rebase_drift();
-        self.config = config;
-        self.ease = None;
-        self.derive();
-        Ok(())
-    }
-
-    /// Sets the periodic swell of the wind's strength ([`Pulse`]) at once.
-    ///
-    /// # Errors
-    /// A magnitude outside [0, 1] or a frequency outside [0, 100] Hz, named.
-    pub fn set_pulse(&mut self, pulse: Pulse) -> Result<(), WindError> {
-        pulse.validate()?;
-        self.config.pulse = pulse;
-        Ok(())
-    }
-
-    /// Books the pattern's travel so far at the current speed and direction, before they change.
-    fn rebase_drift(&mut self) {
-        self.drift_base = self.drift_at(self.time);
-        self.drift_since = self.time;
-    }
-
-    /// How far the pattern has travelled at the reference speed by wind time `time`, m (x, z):
-    /// the travel booked so far plus the current mean wind times the time since.
-    pub(crate) fn drift_at(&self, time: f64) -> DVec2 {
-        let span = f64::from(self.config.reference_speed) * (time - self.drift_since);
-        self.drift_base + DVec2::new(f64::from(self.along.x), f64::from(self.along.z)) * span
-    }
-
-    /// Eases the mean wind toward `speed` (m/s at the reference height) and `direction` (x, z)
-    /// with time constant `time_constant` (s of wind time): as the clock advances, both move the
-    /// fraction 1 − e^(−dt/τ) of the way each step (the direction turning the short way), so a
-    /// storm builds up and a wind veers without a jump; τ = 0 sets them at once. The turbulence
-    /// pattern is kept. [`Self::set_reference_speed`] or [`Self::set_direction`] end it.
-    ///
-    /// # Errors
-    /// A speed or direction [`Self::set_reference_speed`] / [`Self::set_direction`] would
-    /// refuse, or a negative or non-finite `time_constant`.
-    pub fn ease_to(
-        &mut self,
-        speed: f32,
-        direction: Vec2,
-        time_constant: f32,
-    ) -> Result<(), WindError> {
-        let mut target = self.config.clone();
-        target.reference_speed = speed;
-        target.direction = direction;
-        validate_extra(&target)?;
-        if !(time_constant.is_finite() && time_constant >= 0.0) {
-            return Err(WindError::Invalid {
-                field: "time_constant",
-                value: time_constant,
-                reason: "must be finite and ≥ 0",
-            });
-        }
-        let direction = crate::guard::unit_vec2(direction).unwrap_or(Vec2::X);
-        self.ease = Some(Ease {
-            speed,
-            direction,
-            time_constant,
-        });
-        if time_constant == 0.0 {
-            self.ease_step(0.0);
-        }
-        Ok(())
-    }
-
-    /// Restores an easing (from a [`WindSnapshot`](super::WindSnapshot)) without stepping it.
-    pub(super) fn resume_easing(
-        &mut self,
-        speed: f32,
-        direction: Vec2,
-        time_constant: f32,
-    ) -> Result<(), WindError> {
-        let (speed_now, direction_now) = (self.config.reference_speed, self.config.direction);
-        self.ease_to(speed, direction, time_constant.max(f32::MIN_POSITIVE))?;
-        // ease_to with τ > 0 changes nothing yet; keep the exact τ.
-        if let Some(ease) = self.ease.as_mut() {
-            ease.time_constant = time_constant;
-        }
-        debug_assert_eq!(
-            (speed_now, direction_now),
-            (self.config.reference_speed, self.config.direction)
-        );
-        Ok(())
-    }
-
-    /// Where [`Self::ease_to`] is taking the mean wind: (speed, unit direction, τ).
-    pub fn easing(&self) -> Option<(f32, Vec2, f32)> {
-        self.ease.map(|e| (e.speed, e.direction, e.time_constant))
-    }
-
-    fn ease_step(&mut self, dt: f32) {
-        let Some(ease) = self.ease else {
-            return;
-        };
-        let now = Vec2::new(self.along.x, self.along.z);
-        let (speed, direction, arrived) = ease.step(self.config.reference_speed, now, dt);
-        self.rebase_drift();
-        self.config.reference_speed = speed;
-        self.config.direction = direction;
-        if arrived {
-            self.ease = None;
-        }
-        self.derive();
-    }
-
-    /// Wind time, s.
-    pub fn time(&self) -> f32 {
-        self.time as f32
-    }
-
-    /// Wind time, s, in full (the clock runs in f64 so that long sessions keep their precision).
-    pub fn time_seconds(&self) -> f64 {
-        self.time
-    }
-
-    /// Sets the wind clock to `time` seconds, clamped to ±[`MAX_CLOCK`] (a non-finite time is
-    /// ignored).
-    pub fn set_clock(&mut self, time: f64) {
-        if time.is_finite() {
-            self.time = time.clamp(-MAX_CLOCK, MAX_CLOCK);
-            self.step_start = self.time;
-        }
-    }
-
-    /// Advances the wind clock by `dt` seconds times [`Self::time_scale`], unless paused.
-    /// A non-finite step is ignored; the clock stays within ±[`MAX_CLOCK`], so even a
-    /// `time_scale` of `f32::MAX` leaves [`Self::time`] finite.
-    pub fn advance(&mut self, dt: f32) {
-        let step = f64::from(dt) * f64::from(self.time_scale);
-        self.step_start = self.time;
-        if !self.paused && step.is_finite() {
-            self.time = (self.time + step).clamp(-MAX_CLOCK, MAX_CLOCK);
-            self.ease_step(step.abs().min(f64::from(f32::MAX)) as f32);
-        }
-    }
-
-    /// Takes over `old`'s clock (time, time scale, pause), its [`Self::ease_to`] in progress and
-    /// how far its pattern has travelled, so a rebuilt field continues where the old one was.
-    pub fn continue_clock_of(&mut self, old: &WindField) {
-        self.time = old.time;
-        self.time_scale = old.time_scale;
-        self.paused = old.paused;
-        self.ease = old.ease;
-        self.step_start = old.step_start;
-        self.drift_base = old.drift_base;
-        self.drift_since = old.drift_since;
-    }
-
     /// Replaces the local sources (the [`WindPlugin`](super::WindPlugin) does this every fixed
     /// step from the [`WindSource`](super::WindSource) components).
     pub(crate) fn set_sources(&mut self, sources: Vec<PlacedSource>) {
@@ -465,20 +295,30 @@ fn grid_dims(config: &WindConfig) -> Vec<usize> {
 pub(super) fn validate_extra(config: &WindConfig) -> Result<(), WindError> {
     config.validate()?;
     if config.reference_speed > MAX_REFERENCE_SPEED {
-        return Err(WindError::Invalid {
+        return Err(WindError::Invalid(InvalidValue {
             field: "reference_speed",
             value: config.reference_speed,
             reason: "must be ≤ 1e4 m/s",
-        });
+        }));
     }
     if let Some(i) = config.turbulence_intensity
         && i > MAX_TURBULENCE_INTENSITY
     {
-        return Err(WindError::Invalid {
+        return Err(WindError::Invalid(InvalidValue {
             field: "turbulence_intensity",
             value: i,
             reason: "must be ≤ 10",
-        });
+        }));
     }
     Ok(())
+}
+
+/// Limits and constants of [`WindField`].
+impl WindField {
+    /// Bound of the wind clock, s (about 31 700 years): [`WindField::advance`] and
+    /// [`WindField::set_clock`] clamp to ±this, so the clock and [`WindField::time`] stay finite.
+    pub const MAX_CLOCK: f64 = MAX_CLOCK;
+
+    /// von Kármán's constant κ (eq. 10).
+    pub const VON_KARMAN: f32 = crate::wind::profile::VON_KARMAN;
 }

@@ -1,6 +1,7 @@
-//! Measuring what the synthesis made: power spectra along grid lines, the slope of a spectrum
+//! Measuring what a synthesis made: power spectra along grid lines, the slope of a spectrum
 //! on log-log axes, mean and variance. The tests and the `report` example check the 1/f^β
-//! law with these; a game can use them to check its own wind.
+//! law with these (shared by `#[path]`).
+#![allow(dead_code)] // each user takes what it needs
 
 use rustfft::{FftPlanner, num_complex::Complex};
 

@@ -1,0 +1,242 @@
+//! [`PhysicalCloth`]: a [`ParticleCloth`] flag or curtain placed by its entity, its runtime
+//! state and marker, its lifecycle, and the systems that step it and write its mesh.
+
+use bevy::asset::Assets;
+use bevy::ecs::prelude::*;
+use bevy::math::Vec3;
+use bevy::mesh::{Mesh, Mesh3d};
+use bevy::reflect::Reflect;
+use bevy::reflect::std_traits::ReflectDefault;
+use bevy::time::{Fixed, Time};
+use bevy::transform::components::{GlobalTransform, Transform};
+
+use super::cloth::{ParticleCloth, Pinning};
+use super::plate::{AeroCoefficients, AeroError};
+use crate::cloth::{ClothGrid, cloth_mesh, write_cloth_mesh};
+use crate::lifecycle::Described;
+use crate::wind::WindField;
+
+/// A physically simulated flag or curtain: a [`ParticleCloth`] in the entity's local frame
+/// (x along the yarns, y up, pinned at x = 0 or y = 0), with gravity and lift and drag from the
+/// [`WindField`]. [`AeroPlugin`](super::plugin::AeroPlugin) adds a [`PhysicalClothState`] and a [`Mesh3d`] (when the app has
+/// `Assets<Mesh>`); give it a material. Changing the component rebuilds the cloth; an invalid
+/// one gets a [`PhysicalClothInvalid`].
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// use bevy_windfall::aero::{PhysicalCloth, PhysicalClothState};
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// let flag = app
+///     .world_mut()
+///     .spawn((PhysicalCloth::default(), Transform::from_xyz(0.0, 5.0, 0.0)))
+///     .id();
+/// app.update();
+/// let cloth = &app.world().get::<PhysicalClothState>(flag).unwrap().0;
+/// assert!(cloth.max_strain() < 0.05);
+/// ```
+#[derive(Component, Clone, Copy, Debug, PartialEq, Reflect)]
+#[reflect(Component, Default, Debug)]
+#[require(Transform)]
+pub struct PhysicalCloth {
+    /// Size and resolution (the procedural [`Cloth`](crate::cloth::Cloth)'s grid).
+    pub grid: ClothGrid,
+    /// kg/m² (flag fabric: about 0.1–0.2).
+    pub areal_density: f32,
+    /// Coefficients and fluid.
+    pub coefficients: AeroCoefficients,
+    /// Pole column or top row.
+    pub pinning: Pinning,
+}
+
+impl Default for PhysicalCloth {
+    fn default() -> Self {
+        Self {
+            grid: ClothGrid::default(),
+            areal_density: 0.15,
+            coefficients: AeroCoefficients::default(),
+            pinning: Pinning::PoleColumn,
+        }
+    }
+}
+
+/// Runtime state of a [`PhysicalCloth`] (not reflected: the particles are the simulation's).
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::aero::PhysicalClothState;
+///
+/// // How much the particle cloths stretch (XPBD keeps it small).
+/// fn strain(cloths: Query<&PhysicalClothState>) -> f32 {
+///     cloths.iter().map(|c| c.0.max_strain()).fold(0.0, f32::max)
+/// }
+/// # let _ = strain;
+/// ```
+#[derive(Component, Clone, Debug)]
+pub struct PhysicalClothState(pub ParticleCloth);
+
+/// The node positions one fixed step ago, so the mesh is drawn between steps.
+#[derive(Component, Clone, Debug, Default)]
+pub(super) struct PreviousPositions(Vec<Vec3>);
+
+/// Why a [`PhysicalCloth`] has no state (logged once as a warning when it appears), or, with
+/// field `transform`, why it holds still: its global transform is not finite, not invertible
+/// or beyond ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) (removed once it is).
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// use bevy_windfall::aero::{PhysicalCloth, PhysicalClothInvalid};
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// let weightless = PhysicalCloth { areal_density: 0.0, ..default() };
+/// let cloth = app.world_mut().spawn(weightless).id();
+/// app.update();
+/// let invalid = app.world().get::<PhysicalClothInvalid>(cloth).unwrap();
+/// assert_eq!(invalid.0.field(), "areal_density");
+/// ```
+#[derive(Component, Clone, Copy, Debug, PartialEq, Reflect)]
+#[reflect(Component, Debug)]
+pub struct PhysicalClothInvalid(pub AeroError);
+
+crate::lifecycle::invalid_marker!(PhysicalClothInvalid, AeroError);
+
+impl Described for PhysicalCloth {
+    type Invalid = PhysicalClothInvalid;
+    type Key = PhysicalCloth;
+    type Data = ();
+    type Context = Option<ResMut<'static, Assets<Mesh>>>;
+    const SUBJECT: &'static str = "PhysicalCloth";
+    const CONSEQUENCE: &'static str = "it is not simulated";
+
+    fn key(&self) -> PhysicalCloth {
+        *self
+    }
+
+    /// Builds the particles and, with `Assets<Mesh>`, a mesh.
+    fn set_up(
+        &self,
+        entity: Entity,
+        _: (),
+        meshes: &mut Option<ResMut<Assets<Mesh>>>,
+        commands: &mut Commands,
+    ) -> Option<Result<(), AeroError>> {
+        let mut e = commands.entity(entity);
+        Some(
+            match ParticleCloth::new(
+                self.grid,
+                self.areal_density,
+                self.coefficients,
+                self.pinning,
+            ) {
+                Ok(sim) => {
+                    if let Some(meshes) = meshes {
+                        let mesh = cloth_mesh(self.grid.rows, self.grid.columns, sim.positions());
+                        e.insert(Mesh3d(meshes.add(mesh)));
+                    }
+                    e.insert((
+                        PreviousPositions(sim.positions().to_vec()),
+                        PhysicalClothState(sim),
+                    ));
+                    Ok(())
+                }
+                Err(error) => {
+                    e.remove::<PhysicalClothState>();
+                    Err(error)
+                }
+            },
+        )
+    }
+}
+
+pub(super) fn step_cloths(
+    mut commands: Commands,
+    mut cloths: Query<(
+        Entity,
+        &mut PhysicalClothState,
+        &mut PreviousPositions,
+        &GlobalTransform,
+        Option<&PhysicalClothInvalid>,
+    )>,
+    wind: Option<Res<WindField>>,
+    time: Res<Time>,
+) {
+    let dt = time.delta_secs();
+    let wind = wind.as_deref();
+    for (entity, mut state, mut previous, transform, invalid) in &mut cloths {
+        previous.0.clear();
+        previous.0.extend_from_slice(state.0.positions());
+        let affine = transform.affine();
+        // A transform that cannot place the cloth: it holds still, reported once.
+        let placed = crate::guard::check_affine(&affine).map_err(AeroError::from);
+        let bad = placed.is_err();
+        // Marked when it turns bad, cleared when it turns good: once each, as the error's value
+        // (the coordinate, the determinant) may change every step. A cloth with a state had
+        // no set-up error, so a marker here is a transform's.
+        if bad != invalid.is_some() {
+            crate::lifecycle::mark(
+                &mut commands,
+                entity,
+                placed,
+                invalid,
+                "PhysicalCloth",
+                "it holds still",
+            );
+        }
+        if bad {
+            continue;
+        }
+        let inverse = affine.inverse();
+        let gravity = inverse.transform_vector3(Vec3::new(0.0, -9.81, 0.0));
+        // Sampled at the node's world position, turned into the local frame.
+        let local_wind = |p: Vec3| match wind {
+            Some(w) => inverse.transform_vector3(w.velocity(affine.transform_point3(p))),
+            None => Vec3::ZERO,
+        };
+        state.0.step(dt, gravity, &local_wind);
+    }
+}
+
+/// Writes each cloth's mesh between its last two fixed steps (by how far the frame is into the
+/// next step), so it moves smoothly at any frame rate.
+pub(super) fn write_cloth_meshes(
+    cloths: Query<(
+        &PhysicalCloth,
+        &PhysicalClothState,
+        &PreviousPositions,
+        &Mesh3d,
+    )>,
+    mut meshes: Option<ResMut<Assets<Mesh>>>,
+    schedule: Option<Res<crate::schedule::WindfallSchedule>>,
+    time: Option<Res<Time<Fixed>>>,
+    mut shown: Local<Vec<Vec3>>,
+) {
+    let Some(meshes) = meshes.as_deref_mut() else {
+        return;
+    };
+    let s = crate::schedule::overstep(schedule.as_deref(), time.as_deref());
+    for (cloth, state, previous, mesh) in &cloths {
+        if let Some(mut mesh) = meshes.get_mut(&mesh.0) {
+            let g = cloth.grid;
+            let now = state.0.positions();
+            shown.clear();
+            if previous.0.len() == now.len() {
+                shown.extend(previous.0.iter().zip(now).map(|(a, b)| a.lerp(*b, s)));
+            } else {
+                shown.extend_from_slice(now);
+            }
+            write_cloth_mesh(&mut mesh, g.rows, g.columns, &shown);
+        }
+    }
+}

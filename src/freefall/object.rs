@@ -1,0 +1,349 @@
+//! [`FallingObject`] (what a game spawns), its runtime [`FallState`] and [`FallingObjectInvalid`]
+//! marker, the [`Landed`] message, the shared [`FreeFallSettings`], and how an object is let go
+//! (its lifecycle).
+
+use std::sync::Arc;
+
+use bevy::ecs::prelude::*;
+use bevy::math::Vec3;
+use bevy::reflect::Reflect;
+use bevy::reflect::std_traits::ReflectDefault;
+use bevy::transform::components::Transform;
+
+use super::markov::MarkovChain;
+use super::model::FallModel;
+use super::motion::{FallScales, STROUHAL};
+use super::path::FallPath;
+use super::regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape, regime};
+use super::release::FallRelease;
+use super::tiers::TierClock;
+use crate::error::InvalidValue;
+use crate::lifecycle::Described;
+
+/// A leaf, a sheet of paper, a coin: anything thin that falls through air or water.
+///
+/// It falls from where its [`Transform`] is, turned as it is, when the component is added
+/// (released at once by an observer, moved from the next fixed step on). The plate lies in
+/// the entity's local XZ plane with its long axis along local Z (the axis it tumbles about).
+/// Change it (for example `seed += 1`) to release it again from its current transform; a fall
+/// released in mid-air keeps its velocity. An invalid description gets a
+/// [`FallingObjectInvalid`] holding the typed error (logged once with `warn!`) and the entity
+/// stays still. [`FallPreset`](super::presets::FallPreset) has real
+/// objects.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// // A sheet of paper let go 2 m up, turned 30° about its long axis.
+/// let sheet = app
+///     .world_mut()
+///     .spawn((
+///         FallingObject {
+///             shape: Shape::Rectangle { length: 0.297, width: 0.21, thickness: 1e-4 },
+///             density: 800.0,
+///             seed: 3,
+///             ..default()
+///         },
+///         Transform::from_xyz(0.0, 2.0, 0.0).with_rotation(Quat::from_rotation_z(0.5)),
+///     ))
+///     .id();
+/// app.update();
+/// let regime = *app.world().get::<FallState>(sheet).unwrap().regime().unwrap();
+/// assert_eq!(regime.main, PrimitiveMotion::Tumbling);
+/// ```
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Default, Debug)]
+#[require(Transform, FallState)]
+pub struct FallingObject {
+    /// Outline and sizes.
+    pub shape: Shape,
+    /// ρ_s, kg/m³ (above the fluid's).
+    pub density: f32,
+    /// The fluid it falls in.
+    pub fluid: Fluid,
+    /// g, m/s².
+    pub gravity: f32,
+    /// Seed of this object's random stream (Markov steps, search-tree choices, heading).
+    pub seed: u64,
+    /// Use this main motion instead of the phase diagram's.
+    pub main_motion: Option<PrimitiveMotion>,
+    /// k of eq. 7, the deviation coefficient (1 = the paper's amplitudes).
+    pub deviation: f32,
+    /// W of eq. 15: the largest tilt the wind gives, rad.
+    pub wind_tilt: f32,
+    /// The Markov chain of its motions (`None`: the [`FallModel`]'s).
+    pub markov: Option<MarkovChain>,
+}
+
+impl Default for FallingObject {
+    /// A 7.3 × 4.2 cm leaf, 0.3 mm thick, density 500 kg/m³, in air.
+    fn default() -> Self {
+        Self {
+            shape: Shape::Ellipse {
+                major: 0.073,
+                minor: 0.042,
+                thickness: 3.0e-4,
+            },
+            density: 500.0,
+            fluid: Fluid::AIR,
+            gravity: 9.81,
+            seed: 0,
+            main_motion: None,
+            deviation: 1.0,
+            wind_tilt: 0.6,
+            markov: None,
+        }
+    }
+}
+
+impl FallingObject {
+    /// Re, I*, U and the main motion (the phase diagram's, or [`FallingObject::main_motion`]).
+    pub fn regime(&self) -> Result<Regime, FreeFallError> {
+        if !(self.deviation.is_finite() && (0.0..=100.0).contains(&self.deviation)) {
+            return Err(FreeFallError::Invalid(InvalidValue {
+                field: "deviation",
+                value: self.deviation,
+                reason: "must be in [0, 100]",
+            }));
+        }
+        if !(self.wind_tilt.is_finite() && self.wind_tilt.abs() <= std::f32::consts::PI) {
+            return Err(FreeFallError::Invalid(InvalidValue {
+                field: "wind_tilt",
+                value: self.wind_tilt,
+                reason: "must be an angle in [−π, π]",
+            }));
+        }
+        let mut r = regime(&self.shape, self.density, &self.fluid, self.gravity)?;
+        if let Some(main) = self.main_motion {
+            r.main = main;
+        }
+        Ok(r)
+    }
+
+    /// The sizes of its fall (U, Ω = 2π St U / a, L, a, k, ℓ = ρ_s b / ρ_f, I*).
+    pub fn scales(&self, regime: &Regime) -> FallScales {
+        let (length, chord, thickness) = self.shape.lengths();
+        FallScales {
+            descent_speed: regime.descent_speed,
+            swing_rate: (std::f32::consts::TAU * STROUHAL * regime.descent_speed / chord).max(1e-6),
+            length,
+            chord,
+            deviation: self.deviation,
+            drag_length: (f64::from(self.density) * f64::from(thickness)
+                / f64::from(self.fluid.density)) as f32,
+            inertia: regime.inertia,
+        }
+    }
+
+    /// Its fall let go as `release` says, with its own chain or the model's.
+    ///
+    /// # Errors
+    /// What [`Self::regime`] or [`FallRelease::validate`] reject.
+    pub fn path(&self, model: &FallModel, release: FallRelease) -> Result<FallPath, FreeFallError> {
+        let regime = self.regime()?;
+        release.validate()?;
+        let chain = match &self.markov {
+            Some(chain) => Arc::new(chain.bounded(regime.main)),
+            None => model.bounded_shared(regime.main),
+        };
+        Ok(FallPath::release(
+            model,
+            self.scales(&regime),
+            chain,
+            self.seed,
+            release,
+        ))
+    }
+}
+
+/// Runtime state of a [`FallingObject`] (required component). Reflected (Re, I*, U, the main
+/// motion) for inspectors; the path itself is not.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// // Count what the falling objects are doing.
+/// fn census(objects: Query<&FallState>) -> [usize; 6] {
+///     let mut counts = [0; 6];
+///     for motion in objects.iter().filter_map(FallState::motion) {
+///         counts[motion.index()] += 1;
+///     }
+///     counts
+/// }
+/// # let _ = census;
+/// ```
+#[derive(Component, Clone, Debug, Default, Reflect)]
+#[reflect(Component, Default, Debug)]
+pub struct FallState {
+    regime: Option<Regime>,
+    #[reflect(ignore)]
+    pub(super) path: Option<FallPath>,
+    /// When the fall was last stepped, for an object with [`FallLod`] (or one easing back to
+    /// full detail after it was removed).
+    #[reflect(ignore)]
+    pub(super) tier: Option<TierClock>,
+}
+
+impl FallState {
+    /// Re, I*, U, mass and main motion, once the object is set up.
+    pub fn regime(&self) -> Option<&Regime> {
+        self.regime.as_ref()
+    }
+
+    /// The fall (Markov state, control points, orientation).
+    pub fn path(&self) -> Option<&FallPath> {
+        self.path.as_ref()
+    }
+
+    /// The current primitive motion.
+    pub fn motion(&self) -> Option<PrimitiveMotion> {
+        self.path.as_ref().map(FallPath::motion)
+    }
+
+    /// True once on the ground.
+    pub fn landed(&self) -> bool {
+        self.path.as_ref().is_some_and(FallPath::landed)
+    }
+}
+
+/// Why a [`FallingObject`] does not fall: its description is invalid (the error names the
+/// field), or where it was let go is (checked by [`FallRelease::validate`]): a `Transform`
+/// whose translation is not finite or beyond ±[`MAX_COORDINATE`](crate::MAX_COORDINATE)
+/// (`release.position`), a zero or non-finite rotation (`release.rotation`), or a
+/// [`FreeFallSettings::ground_height`] that is not finite (`release.ground`). Inserted in place
+/// of a fall (logged once), removed once the component is changed and valid; the crate's one
+/// convention for runtime failures, as [`ClothInvalid`](crate::cloth::ClothInvalid),
+/// [`PhysicalClothInvalid`](crate::aero::PhysicalClothInvalid) and
+/// [`AeroBodyInvalid`](crate::aero::AeroBodyInvalid).
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// use bevy_windfall::freefall::FallingObjectInvalid;
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// // Lighter than air: it cannot fall.
+/// let balloon = app
+///     .world_mut()
+///     .spawn(FallingObject { density: 0.5, ..default() })
+///     .id();
+/// app.update();
+/// let invalid = app.world().get::<FallingObjectInvalid>(balloon).unwrap();
+/// assert_eq!(invalid.0.field(), "density");
+/// ```
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Debug)]
+pub struct FallingObjectInvalid(pub FreeFallError);
+
+crate::lifecycle::invalid_marker!(FallingObjectInvalid, FreeFallError);
+
+/// Sent when a [`FallingObject`] reaches the ground.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// fn rustle(mut landed: MessageReader<Landed>) {
+///     for l in landed.read() {
+///         info!("{} landed at {} after {:.1} s", l.entity, l.position, l.flight_time);
+///     }
+/// }
+/// App::new()
+///     .add_plugins((MinimalPlugins, WindfallPlugins))
+///     .add_systems(Update, rustle);
+/// ```
+#[derive(Message, Clone, Copy, Debug, PartialEq)]
+pub struct Landed {
+    /// The object.
+    pub entity: Entity,
+    /// Where it came to rest.
+    pub position: Vec3,
+    /// Seconds since it was released.
+    pub flight_time: f32,
+}
+
+/// Shared settings of every fall.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// // A table top 0.75 m up.
+/// App::new()
+///     .add_plugins((MinimalPlugins, WindfallPlugins))
+///     .insert_resource(FreeFallSettings { ground_height: 0.75 });
+/// ```
+#[derive(Resource, Clone, Debug, PartialEq, Default, Reflect)]
+#[reflect(Resource, Default, Debug)]
+pub struct FreeFallSettings {
+    /// Height of the ground, m: objects stop there.
+    pub ground_height: f32,
+}
+
+impl Described for FallingObject {
+    type Invalid = FallingObjectInvalid;
+    type Key = FallingObject;
+    type Data = (&'static Transform, &'static mut FallState);
+    type Context = (
+        Option<Res<'static, FreeFallSettings>>,
+        Option<Res<'static, FallModel>>,
+    );
+    const SUBJECT: &'static str = "FallingObject";
+    const CONSEQUENCE: &'static str = "it does not fall";
+
+    fn key(&self) -> FallingObject {
+        self.clone()
+    }
+
+    /// Lets the object go from its transform; a fall released again in mid-air keeps the
+    /// velocity the fluid gave it. Without a model (removed by the user) nothing is released.
+    fn set_up(
+        &self,
+        _: Entity,
+        (transform, mut state): (&Transform, Mut<FallState>),
+        (settings, model): &mut (Option<Res<FreeFallSettings>>, Option<Res<FallModel>>),
+        _: &mut Commands,
+    ) -> Option<Result<(), FreeFallError>> {
+        let model = model.as_deref()?;
+        let velocity = state
+            .path
+            .as_ref()
+            .filter(|p| !p.landed())
+            .map_or(Vec3::ZERO, FallPath::drift);
+        let release = FallRelease {
+            position: transform.translation,
+            rotation: Some(transform.rotation),
+            velocity,
+            ground: settings.as_ref().map_or(0.0, |s| s.ground_height),
+        };
+        let fall = self
+            .regime()
+            .and_then(|regime| Ok((regime, self.path(model, release)?)));
+        let (regime, path, outcome) = match fall {
+            Ok((regime, path)) => (Some(regime), Some(path), Ok(())),
+            Err(error) => (None, None, Err(error)),
+        };
+        *state = FallState {
+            regime,
+            path,
+            tier: None,
+        };
+        Some(outcome)
+    }
+}

@@ -1,0 +1,73 @@
+//! The plugin group and the debug plugin: the top layer, which only assembles the domains'
+//! plugins.
+
+#[cfg(feature = "gizmos")]
+use bevy::app::{App, Plugin};
+use bevy::app::{FixedUpdate, PluginGroup, PluginGroupBuilder};
+use bevy::ecs::schedule::{InternedScheduleLabel, ScheduleLabel};
+
+use crate::{aero, cloth, freefall, wind};
+
+/// All of bevy_windfall's plugins. Add the group (`add_plugins(WindfallPlugins)`, the
+/// simulation in [`FixedUpdate`](bevy::app::FixedUpdate)), a single plugin, or disable one:
+/// `WindfallPlugins.build().disable::<ClothPlugin>()`. Simulate in another schedule with
+/// [`WindfallPlugins::new`], as avian's `PhysicsPlugins::new(schedule)`.
+///
+/// [`ClothPlugin`]: cloth::ClothPlugin
+#[derive(Clone, Copy, Debug, Default)]
+pub struct WindfallPlugins {
+    /// Where the simulation runs; `None` is `FixedUpdate` (so the group can be a `const`).
+    schedule: Option<InternedScheduleLabel>,
+}
+
+/// The group in [`FixedUpdate`](bevy::app::FixedUpdate), as a value: `add_plugins(WindfallPlugins)`
+/// reads as it would for a unit struct (the same as `WindfallPlugins::default()`).
+#[allow(non_upper_case_globals)]
+pub const WindfallPlugins: WindfallPlugins = WindfallPlugins { schedule: None };
+
+impl WindfallPlugins {
+    /// All the plugins, simulating (the [`WindfallSystems::Wind`](crate::WindfallSystems::Wind)
+    /// and [`WindfallSystems::Simulate`](crate::WindfallSystems::Simulate) sets) in `schedule`
+    /// instead of `FixedUpdate`. In a schedule other than the fixed ones the step is the frame's
+    /// and poses are not interpolated.
+    pub fn new(schedule: impl ScheduleLabel) -> Self {
+        Self {
+            schedule: Some(schedule.intern()),
+        }
+    }
+}
+
+impl PluginGroup for WindfallPlugins {
+    fn build(self) -> PluginGroupBuilder {
+        let s = self.schedule;
+        let recorded = s.unwrap_or_else(|| FixedUpdate.intern());
+        PluginGroupBuilder::start::<Self>()
+            .add(crate::schedule::RecordSchedule(recorded))
+            .add(wind::WindPlugin {
+                schedule: s,
+                ..Default::default()
+            })
+            .add(freefall::FreeFallPlugin { schedule: s })
+            .add(freefall::LeafCloudPlugin { schedule: s })
+            .add(aero::AeroPlugin { schedule: s })
+            .add(cloth::ClothPlugin { schedule: s })
+    }
+}
+
+/// Debug drawing (feature `gizmos`), added by you, like avian's `PhysicsDebugPlugin`: wind
+/// arrows ([`wind::WindGizmos`]), fall trails ([`freefall::FallGizmos`]) and cloth yarns
+/// ([`cloth::ClothGizmos`]), each a gizmo config group, all off until enabled in the
+/// `GizmoConfigStore`. Needs Bevy's gizmo plugin (in `DefaultPlugins`).
+#[cfg(feature = "gizmos")]
+pub struct WindfallDebugPlugin;
+
+#[cfg(feature = "gizmos")]
+impl Plugin for WindfallDebugPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_plugins((
+            wind::WindGizmosPlugin,
+            freefall::FallGizmosPlugin,
+            cloth::ClothGizmosPlugin,
+        ));
+    }
+}

@@ -1,0 +1,182 @@
+//! What changes a built [`WindField`] live: its mean speed, direction and pulse, at once or eased
+//! ([`WindField::ease_to`]), and its clock.
+
+use bevy::math::{DVec2, Vec2};
+
+use super::super::ease::WindEasing;
+use super::super::error::WindError;
+use super::super::pulse::Pulse;
+use super::{MAX_CLOCK, WindField, validate_extra};
+use crate::error::InvalidValue;
+
+impl WindField {
+    /// Changes the mean speed at the reference height at once, keeping the turbulence pattern
+    /// (and ending any [`Self::ease_to`]).
+    pub fn set_reference_speed(&mut self, speed: f32) -> Result<(), WindError> {
+        let mut config = self.config.clone();
+        config.reference_speed = speed;
+        validate_extra(&config)?;
+        self.rebase_drift();
+        self.config = config;
+        self.ease = None;
+        self.derive();
+        Ok(())
+    }
+
+    /// Changes the horizontal direction (x, z) of the mean wind at once, keeping the pattern
+    /// (and ending any [`Self::ease_to`]).
+    pub fn set_direction(&mut self, direction: Vec2) -> Result<(), WindError> {
+        let mut config = self.config.clone();
+        config.direction = direction;
+        validate_extra(&config)?;
+        self.rebase_drift();
+        self.config = config;
+        self.ease = None;
+        self.derive();
+        Ok(())
+    }
+
+    /// Sets the periodic swell of the wind's strength ([`Pulse`]) at once.
+    ///
+    /// # Errors
+    /// A magnitude outside [0, 1] or a frequency outside [0, 100] Hz, named.
+    pub fn set_pulse(&mut self, pulse: Pulse) -> Result<(), WindError> {
+        pulse.validate()?;
+        self.config.pulse = pulse;
+        Ok(())
+    }
+
+    /// Books the pattern's travel so far at the current speed and direction, before they change.
+    fn rebase_drift(&mut self) {
+        self.drift_base = self.drift_at(self.time);
+        self.drift_since = self.time;
+    }
+
+    /// How far the pattern has travelled at the reference speed by wind time `time`, m (x, z):
+    /// the travel booked so far plus the current mean wind times the time since.
+    pub(crate) fn drift_at(&self, time: f64) -> DVec2 {
+        let span = f64::from(self.config.reference_speed) * (time - self.drift_since);
+        self.drift_base + DVec2::new(f64::from(self.along.x), f64::from(self.along.z)) * span
+    }
+
+    /// Eases the mean wind toward `speed` (m/s at the reference height) and `direction` (x, z)
+    /// with time constant `time_constant` (s of wind time): as the clock advances, both move the
+    /// fraction 1 − e^(−dt/τ) of the way each step (the direction turning the short way), so a
+    /// storm builds up and a wind veers without a jump; τ = 0 sets them at once. The turbulence
+    /// pattern is kept. [`Self::set_reference_speed`] or [`Self::set_direction`] end it.
+    ///
+    /// # Errors
+    /// A speed or direction [`Self::set_reference_speed`] / [`Self::set_direction`] would
+    /// refuse, or a negative or non-finite `time_constant`.
+    pub fn ease_to(
+        &mut self,
+        speed: f32,
+        direction: Vec2,
+        time_constant: f32,
+    ) -> Result<(), WindError> {
+        let mut target = self.config.clone();
+        target.reference_speed = speed;
+        target.direction = direction;
+        validate_extra(&target)?;
+        if !(time_constant.is_finite() && time_constant >= 0.0) {
+            return Err(WindError::Invalid(InvalidValue {
+                field: "time_constant",
+                value: time_constant,
+                reason: "must be finite and ≥ 0",
+            }));
+        }
+        let direction = crate::guard::unit_vec2(direction).unwrap_or(Vec2::X);
+        self.ease = Some(WindEasing {
+            speed,
+            direction,
+            time_constant,
+        });
+        if time_constant == 0.0 {
+            self.ease_step(0.0);
+        }
+        Ok(())
+    }
+
+    /// Restores an easing (from a [`WindSnapshot`](super::WindSnapshot)) without stepping it.
+    pub(in crate::wind) fn resume_easing(
+        &mut self,
+        speed: f32,
+        direction: Vec2,
+        time_constant: f32,
+    ) -> Result<(), WindError> {
+        let (speed_now, direction_now) = (self.config.reference_speed, self.config.direction);
+        self.ease_to(speed, direction, time_constant.max(f32::MIN_POSITIVE))?;
+        // ease_to with τ > 0 changes nothing yet; keep the exact τ.
+        if let Some(ease) = self.ease.as_mut() {
+            ease.time_constant = time_constant;
+        }
+        debug_assert_eq!(
+            (speed_now, direction_now),
+            (self.config.reference_speed, self.config.direction)
+        );
+        Ok(())
+    }
+
+    /// Where [`Self::ease_to`] is taking the mean wind, if it is.
+    pub fn easing(&self) -> Option<WindEasing> {
+        self.ease
+    }
+
+    fn ease_step(&mut self, dt: f32) {
+        let Some(ease) = self.ease else {
+            return;
+        };
+        let now = Vec2::new(self.along.x, self.along.z);
+        let (speed, direction, arrived) = ease.step(self.config.reference_speed, now, dt);
+        self.rebase_drift();
+        self.config.reference_speed = speed;
+        self.config.direction = direction;
+        if arrived {
+            self.ease = None;
+        }
+        self.derive();
+    }
+
+    /// Wind time, s.
+    pub fn time(&self) -> f32 {
+        self.time as f32
+    }
+
+    /// Wind time, s, in full (the clock runs in f64 so that long sessions keep their precision).
+    pub fn time_seconds(&self) -> f64 {
+        self.time
+    }
+
+    /// Sets the wind clock to `time` seconds, clamped to ±[`WindField::MAX_CLOCK`](crate::wind::WindField::MAX_CLOCK) (a non-finite time is
+    /// ignored).
+    pub fn set_clock(&mut self, time: f64) {
+        if time.is_finite() {
+            self.time = time.clamp(-MAX_CLOCK, MAX_CLOCK);
+            self.step_start = self.time;
+        }
+    }
+
+    /// Advances the wind clock by `dt` seconds times [`Self::time_scale`], unless paused.
+    /// A non-finite step is ignored; the clock stays within ±[`WindField::MAX_CLOCK`](crate::wind::WindField::MAX_CLOCK), so even a
+    /// `time_scale` of `f32::MAX` leaves [`Self::time`] finite.
+    pub fn advance(&mut self, dt: f32) {
+        let step = f64::from(dt) * f64::from(self.time_scale);
+        self.step_start = self.time;
+        if !self.paused && step.is_finite() {
+            self.time = (self.time + step).clamp(-MAX_CLOCK, MAX_CLOCK);
+            self.ease_step(step.abs().min(f64::from(f32::MAX)) as f32);
+        }
+    }
+
+    /// Takes over `old`'s clock (time, time scale, pause), its [`Self::ease_to`] in progress and
+    /// how far its pattern has travelled, so a rebuilt field continues where the old one was.
+    pub fn continue_clock_of(&mut self, old: &WindField) {
+        self.time = old.time;
+        self.time_scale = old.time_scale;
+        self.paused = old.paused;
+        self.ease = old.ease;
+        self.step_start = old.step_start;
+        self.drift_base = old.drift_base;
+        self.drift_since = old.drift_since;
+    }
+}

@@ -1,0 +1,42 @@
+//! Where a local wind piece (a [`WindSource`](super::source::WindSource) or a
+//! [`WindShelter`](super::shelter::WindShelter)) stands for one fixed step: its origin and rotation taken
+//! from its entity's world transform, its scale ignored. Sources and shelters share it.
+
+use bevy::math::{Affine3A, Quat, Vec3A};
+
+/// An origin and a rotation in the world.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Placement {
+    /// Where it stands.
+    pub(crate) origin: Vec3A,
+    /// Local to world rotation.
+    pub(crate) to_world: Quat,
+    /// World to local rotation (the inverse of `to_world`).
+    pub(crate) to_local: Quat,
+}
+
+impl Placement {
+    /// The place `affine` describes, or `None` when it describes none (a non-finite origin or no
+    /// rotation).
+    pub(crate) fn from_affine(affine: &Affine3A) -> Option<Self> {
+        let (_, rotation, origin) = affine.to_scale_rotation_translation();
+        let rotation = crate::guard::unit_quat(rotation)?;
+        origin.is_finite().then(|| Self {
+            origin: origin.into(),
+            to_world: rotation,
+            to_local: rotation.inverse(),
+        })
+    }
+}
+
+/// The fade (1 − s²)², 1 at s = 0, 0 with zero slope at |s| ≥ 1: how a source's velocity and a
+/// shelter's calm end at their edges.
+pub(crate) fn fade(s: f32) -> f32 {
+    let t = (1.0 - s * s).max(0.0);
+    t * t
+}
+
+/// A size as given, or 0 for a negative or NaN one (which then places nothing).
+pub(crate) fn size(v: f32) -> f32 {
+    if v.is_finite() { v.max(0.0) } else { 0.0 }
+}
