@@ -69,6 +69,23 @@ pub(crate) fn mark<I: InvalidMarker>(
     }
 }
 
+/// [`mark`] for a check made every step (a transform that cannot place the entity): the marker
+/// goes on when the check turns bad and off when it turns good, once each, however the error's
+/// value (a coordinate, a determinant) changes meanwhile. `current` must be a marker only this
+/// check puts on (an entity with a state had no set-up error).
+pub(crate) fn mark_on_change<I: InvalidMarker>(
+    commands: &mut Commands,
+    entity: Entity,
+    outcome: Result<(), I::Error>,
+    current: Option<&I>,
+    subject: &str,
+    consequence: &str,
+) {
+    if outcome.is_err() != current.is_some() {
+        mark(commands, entity, outcome, current, subject, consequence);
+    }
+}
+
 /// A component whose description is set up into a simulation (a fall, a cloud, a cloth), or
 /// refused with a typed error. Its plugin adds the observers ([`observe`]) and the system
 /// [`set_up_changed`] (in `WriteBack`, before anything reads its state).

@@ -181,19 +181,14 @@ pub(super) fn step_cloths(
         // A transform that cannot place the cloth: it holds still, reported once.
         let placed = crate::guard::check_affine(&affine).map_err(AeroError::from);
         let bad = placed.is_err();
-        // Marked when it turns bad, cleared when it turns good: once each, as the error's value
-        // (the coordinate, the determinant) may change every step. A cloth with a state had
-        // no set-up error, so a marker here is a transform's.
-        if bad != invalid.is_some() {
-            crate::lifecycle::mark(
-                &mut commands,
-                entity,
-                placed,
-                invalid,
-                "PhysicalCloth",
-                "it holds still",
-            );
-        }
+        crate::lifecycle::mark_on_change(
+            &mut commands,
+            entity,
+            placed,
+            invalid,
+            "PhysicalCloth",
+            "it holds still",
+        );
         if bad {
             continue;
         }

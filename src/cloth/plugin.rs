@@ -90,19 +90,14 @@ fn step_cloths(
             None => Ok(()),
         };
         let bad = placed.is_err();
-        // Marked when it turns bad, cleared when it turns good: once each, as the error's value
-        // (the coordinate, the determinant) may change every step. A cloth with a state had
-        // no set-up error, so a marker here is a transform's.
-        if bad != invalid.is_some() {
-            crate::lifecycle::mark(
-                &mut commands,
-                entity,
-                placed,
-                invalid,
-                "Cloth",
-                "it flaps at its own wind_speed",
-            );
-        }
+        crate::lifecycle::mark_on_change(
+            &mut commands,
+            entity,
+            placed,
+            invalid,
+            "Cloth",
+            "it flaps at its own wind_speed",
+        );
         if let Some(wind) = wind.filter(|_| !bad) {
             let v = wind.velocity(transform.translation());
             let local = transform.affine().inverse().transform_vector3(v);
