@@ -363,19 +363,20 @@ fn bodies_move_smoothly_at_144_hz_over_a_60_hz_step() {
     }
 }
 
-/// `WindfallPlugins::new(Update)`: the simulation steps once per frame by the frame's time.
-#[test]
-fn the_simulation_schedule_can_be_chosen() {
+/// An app of `plugins` whose frames last 40 ms, set up.
+fn frames_of_40_ms<M>(plugins: impl bevy::app::Plugins<M>) -> App {
     let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        TransformPlugin,
-        WindfallPlugins::new(Update),
-    ))
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
-        40,
-    )));
+    app.add_plugins((MinimalPlugins, TransformPlugin, plugins))
+        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
+            40,
+        )));
     ready(&mut app);
+    app
+}
+
+/// Drops a paper sheet from 10 m and runs `frames` frames: how far the wind clock ran, s, and
+/// the sheet's height after each frame.
+fn drop_a_sheet(app: &mut App, frames: usize) -> (f32, Vec<f32>) {
     let leaf = app
         .world_mut()
         .spawn((
@@ -385,11 +386,18 @@ fn the_simulation_schedule_can_be_chosen() {
         .id();
     let t0 = app.world().resource::<WindField>().time();
     let mut heights = Vec::new();
-    for _ in 0..25 {
+    for _ in 0..frames {
         app.update();
         heights.push(app.world().get::<Transform>(leaf).unwrap().translation.y);
     }
-    let clock = app.world().resource::<WindField>().time() - t0;
+    (app.world().resource::<WindField>().time() - t0, heights)
+}
+
+/// `WindfallPlugins::new(Update)`: the simulation steps once per frame by the frame's time.
+#[test]
+fn the_simulation_schedule_can_be_chosen() {
+    let mut app = frames_of_40_ms(WindfallPlugins::new(Update));
+    let (clock, heights) = drop_a_sheet(&mut app, 25);
     assert!(
         (clock - 1.0).abs() < 1e-4,
         "wind clock ran {clock} s in 25 × 40 ms"
@@ -406,38 +414,18 @@ fn single_plugins_take_their_schedule_in_any_order() {
     use bevy::ecs::schedule::ScheduleLabel;
     // The group's constructor returns the group itself.
     let _: WindfallPlugins = WindfallPlugins::new(Update);
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        TransformPlugin,
+    let mut app = frames_of_40_ms((
         FreeFallPlugin::new(Update),
         WindPlugin::default().in_schedule(Update),
-    ))
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
-        40,
-    )));
-    ready(&mut app);
+    ));
     assert_eq!(
         app.world().resource::<WindfallSchedule>().0,
         Update.intern(),
         "the first plugin records its schedule"
     );
-    let leaf = app
-        .world_mut()
-        .spawn((
-            FallPreset::PaperSheet.object(),
-            Transform::from_xyz(0.0, 10.0, 0.0),
-        ))
-        .id();
-    let t0 = app.world().resource::<WindField>().time();
-    let mut heights = Vec::new();
-    for _ in 0..10 {
-        app.update();
-        heights.push(app.world().get::<Transform>(leaf).unwrap().translation.y);
-    }
+    let (clock, heights) = drop_a_sheet(&mut app, 10);
     // Ten frames of 40 ms: the clock ran exactly 0.4 s (in `FixedUpdate` at 64 Hz it would have
     // run 25 whole steps, 0.390625 s), and the sheet moved down in every frame.
-    let clock = app.world().resource::<WindField>().time() - t0;
     assert!((clock - 0.4).abs() < 1e-4, "wind clock ran {clock} s");
     assert!(heights.windows(2).all(|w| w[1] < w[0]), "{heights:?}");
 }
@@ -446,24 +434,13 @@ fn single_plugins_take_their_schedule_in_any_order() {
 /// its own `WindPlugin` runs the wind clock once per frame too.
 #[test]
 fn a_default_plugin_follows_its_group() {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        TransformPlugin,
+    let mut app = frames_of_40_ms(
         WindfallPlugins::new(Update).set(WindPlugin::new(WindConfig {
             grid: [16, 16],
             ..default()
         })),
-    ))
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_millis(
-        40,
-    )));
-    ready(&mut app);
-    let t0 = app.world().resource::<WindField>().time();
-    for _ in 0..10 {
-        app.update();
-    }
-    let clock = app.world().resource::<WindField>().time() - t0;
+    );
+    let (clock, _) = drop_a_sheet(&mut app, 10);
     assert!((clock - 0.4).abs() < 1e-4, "wind clock ran {clock} s");
 }
 

@@ -3,6 +3,7 @@
 
 use bevy::math::{DVec2, Vec2};
 
+use super::super::config::WindConfig;
 use super::super::ease::WindEasing;
 use super::super::error::WindError;
 use super::super::pulse::Pulse;
@@ -13,21 +14,20 @@ impl WindField {
     /// Changes the mean speed at the reference height at once, keeping the turbulence pattern
     /// (and ending any [`Self::ease_to`]).
     pub fn set_reference_speed(&mut self, speed: f32) -> Result<(), WindError> {
-        let mut config = self.config.clone();
-        config.reference_speed = speed;
-        validate_extra(&config)?;
-        self.rebase_drift();
-        self.config = config;
-        self.ease = None;
-        self.derive();
-        Ok(())
+        self.set_mean(|c| c.reference_speed = speed)
     }
 
     /// Changes the horizontal direction (x, z) of the mean wind at once, keeping the pattern
     /// (and ending any [`Self::ease_to`]).
     pub fn set_direction(&mut self, direction: Vec2) -> Result<(), WindError> {
+        self.set_mean(|c| c.direction = direction)
+    }
+
+    /// Applies `edit` to the mean wind if the result is valid: the pattern's travel so far is
+    /// booked at the old speed and direction, any easing ends.
+    fn set_mean(&mut self, edit: impl FnOnce(&mut WindConfig)) -> Result<(), WindError> {
         let mut config = self.config.clone();
-        config.direction = direction;
+        edit(&mut config);
         validate_extra(&config)?;
         self.rebase_drift();
         self.config = config;
