@@ -2,8 +2,10 @@
 //! log-law mean wind and 1/f^β turbulence, falling leaves, paper and coins that move the way the
 //! free-fall paper describes, flags and curtains that flap with travelling waves, and per-face
 //! lift and drag for rigid plates, particle cloth and avian3d bodies. Equations are cited by
-//! their number in the papers (`free-fall-motion-synthesis`, `fourier-descriptor-cloth-flapping`,
-//! `aerodynamic-lift-and-drag`).
+//! their number in the papers: the free-fall paper (Xie and Miyata, *Realistic Motion
+//! Simulations of Objects in Free Fall*), the cloth paper (Tynystanova and Chiba, *Fourier
+//! Descriptor Animation of Cloth Flapping in Wind*) and the lift-and-drag paper (its
+//! *Aerodynamics* section, after Stam and Fiume 1992).
 //!
 //! # Contents
 //!
@@ -22,8 +24,30 @@
 //!
 //! # Getting started
 //!
-//! Add [`WindfallPlugins`](struct@WindfallPlugins) and spawn what the wind should move; everything is positioned by its
-//! [`Transform`](bevy::transform::components::Transform).
+//! Add [`WindfallPlugins`](struct@WindfallPlugins) after `DefaultPlugins` and spawn what the
+//! wind should move; everything is positioned by its
+//! [`Transform`](bevy::transform::components::Transform) and, with the default feature `render`,
+//! drawn with a default look (a leaf its preset's outline and colours, a cloth a fabric) unless
+//! you give it your own mesh and material:
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use bevy_windfall::prelude::*;
+//!
+//! App::new()
+//!     .add_plugins((DefaultPlugins, WindfallPlugins))
+//!     .add_systems(Startup, |mut commands: Commands| {
+//!         commands.spawn((Camera3d::default(), Transform::from_xyz(0.0, 2.0, 8.0)));
+//!         commands.spawn((DirectionalLight::default(), Transform::from_xyz(2.0, 8.0, 6.0)));
+//!         commands.spawn((FallPreset::MapleLeaf.object(), Transform::from_xyz(0.0, 3.0, 5.0)));
+//!         commands.spawn(LeafCloud { count: 2_000, ..default() });
+//!         commands.spawn((Cloth::default(), Transform::from_xyz(-2.0, 3.0, 0.0)));
+//!         commands.spawn((PhysicalCloth::default(), Transform::from_xyz(1.0, 3.0, 0.0)));
+//!     })
+//!     .run();
+//! ```
+//!
+//! Headless (a server, a test), the same components simulate without drawing:
 //!
 //! ```
 //! use bevy::prelude::*;
@@ -48,8 +72,9 @@
 //! ```
 //!
 //! Every plugin is opt-in: add the group, a single plugin, or
-//! `WindfallPlugins.build().disable::<ClothPlugin>()`. The windowed scenes are examples
-//! (`cargo run --example showcase --features example_scenes,egui`).
+//! `WindfallPlugins.build().disable::<ClothPlugin>()`. The repository's examples each show one
+//! topic (`cargo run --example falling_leaves`, `flag`, `leaf_cloud`, …); the showcase tours them
+//! all (`cargo run --example showcase --features egui`).
 //!
 //! # The wind
 //!
@@ -180,13 +205,12 @@
 //!
 //! | feature | adds |
 //! |---|---|
-//! | *(none)* | everything above; Bevy with `default-features = false` |
+//! | `render` (default) | drawing: default looks, leaf clouds in one draw call, the wind on the GPU (`gpu`: the WGSL module `bevy_windfall::wind`, the `WindSway` material); nothing in an app without Bevy's renderer |
+//! | *(no default features)* | everything above, headless; Bevy with `default-features = false` |
 //! | `gizmos` | `WindfallDebugPlugin`: wind arrows, fall trails, cloth yarns |
 //! | `egui` | `inspector::WindfallInspectorPlugin`, a tuning panel (bevy_egui 0.42) |
 //! | `serde` | `Serialize`/`Deserialize` for the wind settings and [`WindSnapshot`](wind::WindSnapshot) |
-//! | `avian` | `AvianAero` and `AvianAeroPlugin` for avian3d 0.7 |
-//! | `render` | `gpu::WindGpuPlugin`: the wind on the GPU, the WGSL module `bevy_windfall::wind`, the `WindSway` material |
-//! | `example_scenes` | what the windowed examples need (renderer, window, UI) |
+//! | `avian` | `AvianAero` and `AvianAeroPlugin` (in the group) for avian3d 0.7 |
 //!
 //! # How the crate is laid out
 //!
@@ -202,6 +226,11 @@
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The code blocks of docs/live.md (the headless start among them), compiled and run.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/live.md")]
+pub struct LiveDoctests;
 
 pub mod aero;
 pub mod cloth;

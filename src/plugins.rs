@@ -8,10 +8,16 @@ use bevy::ecs::schedule::{InternedScheduleLabel, ScheduleLabel};
 
 use crate::{aero, cloth, freefall, wind};
 
-/// All of bevy_windfall's plugins. Add the group (`add_plugins(WindfallPlugins)`, the
-/// simulation in [`FixedUpdate`](bevy::app::FixedUpdate)), a single plugin, or disable one:
-/// `WindfallPlugins.build().disable::<ClothPlugin>()`. Simulate in another schedule with
-/// [`WindfallPlugins::new`], as avian's `PhysicsPlugins::new(schedule)`.
+/// All of bevy_windfall's plugins. Add the group after `DefaultPlugins`
+/// (`add_plugins(WindfallPlugins)`, the simulation in [`FixedUpdate`](bevy::app::FixedUpdate)),
+/// a single plugin, or disable one: `WindfallPlugins.build().disable::<ClothPlugin>()`. Simulate
+/// in another schedule with [`WindfallPlugins::new`], as avian's `PhysicsPlugins::new(schedule)`.
+///
+/// With the features that bring them, the group also holds what draws and what couples:
+/// `WindfallRenderPlugin` (feature `render`, on by default: default looks, leaf clouds, the wind
+/// on the GPU; it does nothing in an app without Bevy's renderer) and `AvianAeroPlugin`
+/// (feature `avian`, in avian's default schedule: replace it with
+/// `.set(AvianAeroPlugin::new(schedule))` if avian runs elsewhere).
 ///
 /// [`ClothPlugin`]: cloth::ClothPlugin
 #[derive(Clone, Copy, Debug, Default)]
@@ -41,7 +47,7 @@ impl PluginGroup for WindfallPlugins {
     fn build(self) -> PluginGroupBuilder {
         let s = self.schedule;
         let recorded = s.unwrap_or_else(|| FixedUpdate.intern());
-        PluginGroupBuilder::start::<Self>()
+        let group = PluginGroupBuilder::start::<Self>()
             .add(crate::schedule::RecordSchedule(recorded))
             .add(wind::WindPlugin {
                 schedule: s,
@@ -50,7 +56,12 @@ impl PluginGroup for WindfallPlugins {
             .add(freefall::FreeFallPlugin { schedule: s })
             .add(freefall::LeafCloudPlugin { schedule: s })
             .add(aero::AeroPlugin { schedule: s })
-            .add(cloth::ClothPlugin { schedule: s })
+            .add(cloth::ClothPlugin { schedule: s });
+        #[cfg(feature = "render")]
+        let group = group.add(crate::gpu::WindfallRenderPlugin);
+        #[cfg(feature = "avian")]
+        let group = group.add(aero::AvianAeroPlugin::default());
+        group
     }
 }
 

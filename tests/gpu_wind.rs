@@ -180,7 +180,6 @@ fn headless_render_app(config: WindConfig) -> App {
         .disable::<PipelinedRenderingPlugin>()
         // One global logger per process, and this test makes several apps.
         .disable::<bevy::log::LogPlugin>();
-    #[cfg(feature = "example_scenes")]
     let plugins = plugins.disable::<bevy::winit::WinitPlugin>();
     app.add_plugins(plugins)
         .add_plugins((WindPlugin::new(config), WindGpuPlugin))
@@ -400,6 +399,7 @@ fn run(case: &Case) -> (f32, f32) {
 }
 
 #[test]
+#[ignore = "needs a GPU or Mesa's lavapipe (CI runs it): cargo test --test gpu_wind -- --ignored"]
 fn the_gpu_samples_the_same_wind_as_the_cpu() {
     let plane = WindConfig {
         reference_speed: 6.0,
@@ -461,15 +461,15 @@ fn the_gpu_samples_the_same_wind_as_the_cpu() {
     }
 }
 
-/// Every triangle of a leaf cloud's mesh faces the way its normal points (+Y), for every shape:
-/// a double-sided material flips the normal of back faces, so a reversed winding would light
-/// each leaf from the wrong side.
+/// Every triangle of a leaf cloud's mesh faces the way its normal points (+Y), for every preset's
+/// outline and every shape without one: a double-sided material flips the normal of back faces,
+/// so a reversed winding would light each leaf from the wrong side.
 #[test]
 fn cloud_leaves_face_their_normals() {
     use bevy::mesh::{Mesh, VertexAttributeValues};
-    use bevy_windfall::freefall::Shape;
+    use bevy_windfall::freefall::{FallPreset, FallingObject, Shape};
     use bevy_windfall::gpu::LeafCloudLook;
-    for shape in [
+    let plain = [
         Shape::Ellipse {
             major: 0.1,
             minor: 0.05,
@@ -484,8 +484,10 @@ fn cloud_leaves_face_their_normals() {
             width: 0.06,
             thickness: 3e-4,
         },
-    ] {
-        let mesh = LeafCloudLook::default().mesh(&shape, 3);
+    ]
+    .map(|shape| FallingObject { shape, ..default() });
+    for object in FallPreset::ALL.map(FallPreset::object).iter().chain(&plain) {
+        let mesh = LeafCloudLook::default().mesh(object, 3);
         let Some(VertexAttributeValues::Float32x3(positions)) =
             mesh.attribute(Mesh::ATTRIBUTE_POSITION)
         else {
@@ -497,15 +499,13 @@ fn cloud_leaves_face_their_normals() {
             panic!("normals");
         };
         let indices: Vec<usize> = mesh.indices().expect("indices").iter().collect();
-        assert!(indices.len() >= 3 * 2 * 3, "{shape:?}");
+        let what = (object.look, object.shape);
+        assert!(indices.len() >= 3 * 4 * 3, "{what:?}");
         for t in indices.chunks_exact(3) {
             let [a, b, c] = [t[0], t[1], t[2]].map(|i| Vec3::from_array(positions[i]));
             let face = (b - a).cross(c - a);
             let normal = Vec3::from_array(normals[t[0]]);
-            assert!(
-                face.dot(normal) > 0.0,
-                "{shape:?}: a triangle faces −normal"
-            );
+            assert!(face.dot(normal) > 0.0, "{what:?}: a triangle faces −normal");
         }
     }
 }

@@ -9,9 +9,10 @@ use std::fs::File;
 use std::path::{Path, PathBuf};
 
 /// The screenshots CI takes: the showcase's four scenes (and its banner and curtain, and the
-/// leaves scene's meadow of GPU-swayed grass), the wind and aero scenes. The leaves scene must
-/// also show its storm (a leaf cloud).
-const EXPECTED: [&str; 9] = [
+/// leaves scene's meadow of GPU-swayed grass), every topic example, and a newcomer's game (the
+/// README's quick start in a fresh project, `.ci/newcomer.py`). The leaves scene must also show
+/// its storm (a leaf cloud); the examples what they are about (see [`content_reason`]).
+const EXPECTED: [&str; 18] = [
     "meadow.png",
     "showcase_leaves.png",
     "showcase_coin.png",
@@ -19,9 +20,77 @@ const EXPECTED: [&str; 9] = [
     "showcase_gallery.png",
     "banner.png",
     "curtain.png",
-    "wind.png",
-    "aero.png",
+    "example_falling_leaves.png",
+    "example_leaf_cloud.png",
+    "example_coin_in_water.png",
+    "example_flag.png",
+    "example_curtain.png",
+    "example_wind_sources.png",
+    "example_grass.png",
+    "example_avian_body.png",
+    "example_physical_flag.png",
+    "example_inspector.png",
+    "newcomer.png",
 ];
+
+/// Shares of the frame's pixels that are flag red (the default cloth fabric) and cloth blue (the
+/// default physical cloth).
+fn fabric_shares(frame: &Frame) -> (f64, f64) {
+    let n = frame.rgb.len() as f64;
+    let red = frame.rgb.iter().filter(|p| {
+        let [r, g, b] = p.map(f64::from);
+        r > 90.0 && r > 2.0 * g && r > 2.0 * b
+    });
+    let blue = frame.rgb.iter().filter(|p| {
+        let [r, g, b] = p.map(f64::from);
+        b > 80.0 && b > 1.5 * r && b > 1.2 * g
+    });
+    (red.count() as f64 / n, blue.count() as f64 / n)
+}
+
+/// Leaves anywhere in the frame: runs of autumn-coloured pixels (red, orange, yellow or brown:
+/// red above green above blue by a margin) per 1000 pixels. Green ground and blue sky give none.
+fn leaf_specks(frame: &Frame) -> f64 {
+    let w = frame.width;
+    let mut runs = 0usize;
+    for row in frame.rgb.chunks(w) {
+        let mut previous = false;
+        for p in row {
+            let [r, g, b] = p.map(i32::from);
+            let autumn = r > g + 10 && r > b + 40;
+            runs += usize::from(autumn && !previous);
+            previous = autumn;
+        }
+    }
+    1000.0 * runs as f64 / frame.rgb.len().max(1) as f64
+}
+
+/// Why an example's (or the newcomer's) frame does not show what it is about: a flag (red), a
+/// physical cloth (blue), leaves (autumn specks) or grass.
+fn content_reason(name: &str, frame: &Frame) -> Option<String> {
+    let (red, blue) = fabric_shares(frame);
+    let specks = leaf_specks(frame);
+    let wants = |topics: &[&str]| topics.iter().any(|t| name.contains(t));
+    let mut missing = Vec::new();
+    if wants(&["_flag", "curtain", "inspector", "newcomer"]) && red < 0.002 {
+        missing.push(format!("no red flag: {:.2} % red", red * 100.0));
+    }
+    if wants(&["physical_flag", "newcomer"]) && blue < 0.002 {
+        missing.push(format!(
+            "no blue physical cloth: {:.2} % blue",
+            blue * 100.0
+        ));
+    }
+    if wants(&["falling_leaves", "leaf_cloud", "wind_sources", "newcomer"]) && specks < 0.3 {
+        missing.push(format!(
+            "no leaves: {specks:.2} autumn specks per 1000 pixels (≥ 0.3)"
+        ));
+    }
+    if wants(&["grass"]) {
+        missing.extend(grass_reason(frame));
+    }
+    (!missing.is_empty()).then(|| missing.join("; "))
+}
 
 /// An RGB frame.
 struct Frame {
@@ -86,6 +155,21 @@ fn region_shares(frame: &Frame, keep: impl Fn(usize, usize) -> bool) -> Vec<f64>
 /// lower-left quadrant (clear of the text at the top and the panel on the right) that is not
 /// one colour: before the 3-D pipelines are ready, that part shows only the clear colour.
 fn blank_reason(frame: &Frame) -> Option<String> {
+    scene_reason(frame).or_else(|| {
+        let (w, h) = (frame.width, frame.height);
+        let corner = region_shares(frame, |x, y| x < w / 2 && y > h / 2);
+        (corner[0] > 0.9).then(|| {
+            format!(
+                "one colour covers {:.0} % of the lower-left quadrant: no scene behind the UI",
+                corner[0] * 100.0
+            )
+        })
+    })
+}
+
+/// Why `frame` is not a rendered scene, without the showcase's lower-left rule (an example's
+/// ground may fill that quadrant): not black, no colour over 80 %, three colours of 2 % or more.
+fn scene_reason(frame: &Frame) -> Option<String> {
     let n = frame.rgb.len() as f64;
     let luminance: f64 = frame
         .rgb
@@ -101,18 +185,7 @@ fn blank_reason(frame: &Frame) -> Option<String> {
         return Some(format!("one colour covers {:.0} %", shares[0] * 100.0));
     }
     let visible = shares.iter().filter(|&&s| s >= 0.02).count();
-    if visible < 3 {
-        return Some(format!("only {visible} colours cover 2 % or more"));
-    }
-    let (w, h) = (frame.width, frame.height);
-    let corner = region_shares(frame, |x, y| x < w / 2 && y > h / 2);
-    if corner[0] > 0.9 {
-        return Some(format!(
-            "one colour covers {:.0} % of the lower-left quadrant: no scene behind the UI",
-            corner[0] * 100.0
-        ));
-    }
-    None
+    (visible < 3).then(|| format!("only {visible} colours cover 2 % or more"))
 }
 
 /// The grass of the meadow view: the bottom third of the left half (clear of the panel) is mostly
@@ -256,9 +329,22 @@ fn every_example_screenshot_shows_its_scene() {
         match load(&path) {
             Err(e) => failures.push(format!("{name}: {e}")),
             Ok(frame) => {
-                if let Some(reason) = blank_reason(&frame) {
+                let topic = name.starts_with("example_") || name == "newcomer.png";
+                let reason = if topic {
+                    scene_reason(&frame).or_else(|| content_reason(name, &frame))
+                } else {
+                    blank_reason(&frame)
+                };
+                if let Some(reason) = reason {
                     failures.push(format!("{name}: {reason}"));
                 }
+                let (red, blue) = fabric_shares(&frame);
+                println!(
+                    "{name}: {:.2} % red, {:.2} % blue, {:.2} leaf specks per 1000 pixels",
+                    red * 100.0,
+                    blue * 100.0,
+                    leaf_specks(&frame)
+                );
                 let (green, detail) = grass_measures(&frame);
                 println!("{name}: grass measures {green:.2} green, detail {detail:.1}");
                 if name == "meadow.png"

@@ -1,7 +1,6 @@
-//! What every example scene shares: `--frames N`, `--screenshot PATH`, `--window WxH`.
+//! What the examples share: [`ScreenshotPlugin`], how CI renders them (`--screenshot PATH`,
+//! `--window WxH`, `--frames N`), and the showcase's scenery. Nothing a game needs.
 #![allow(dead_code)]
-
-pub mod leaf;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -95,33 +94,49 @@ fn track_readiness(pending: Res<PendingPipelines>, mut readiness: ResMut<Readine
     }
 }
 
-/// `DefaultPlugins` with a window titled `title` (1280×720 unless `--window` says), plus the
-/// `--frames`/`--screenshot` handling.
+/// How CI renders an example (not needed in a game): `--screenshot PATH` saves the window once
+/// every render pipeline has compiled and exits, `--window WxH` sizes the window, `--frames N`
+/// exits after N frames (or takes the screenshot no earlier). Add it after `DefaultPlugins`.
+pub struct ScreenshotPlugin;
+
+impl Plugin for ScreenshotPlugin {
+    fn build(&self, app: &mut App) {
+        let args = ExampleArgs::parse();
+        if let Some((width, height)) = args.window {
+            let size = move |mut windows: Query<&mut Window>| {
+                for mut window in &mut windows {
+                    window.resolution = WindowResolution::new(width, height);
+                }
+            };
+            app.add_systems(Startup, size);
+        }
+        app.insert_resource(args)
+            .init_resource::<FrameCount>()
+            .init_resource::<Readiness>()
+            .add_systems(First, track_readiness)
+            .add_systems(Last, frames_and_screenshot);
+        let pending = PendingPipelines::default();
+        app.insert_resource(pending.clone());
+        app.sub_app_mut(RenderApp)
+            .insert_resource(pending)
+            .add_systems(
+                Render,
+                count_pending_pipelines.in_set(RenderSystems::Cleanup),
+            );
+    }
+}
+
+/// `DefaultPlugins` with a window titled `title`, plus [`ScreenshotPlugin`].
 pub fn example_app(title: &str) -> App {
-    let args = ExampleArgs::parse();
-    let (width, height) = args.window.unwrap_or((1280, 720));
     let mut app = App::new();
     app.add_plugins(DefaultPlugins.set(WindowPlugin {
         primary_window: Some(Window {
             title: title.into(),
-            resolution: WindowResolution::new(width, height),
             ..default()
         }),
         ..default()
     }))
-    .insert_resource(args)
-    .init_resource::<FrameCount>()
-    .init_resource::<Readiness>()
-    .add_systems(First, track_readiness)
-    .add_systems(Last, frames_and_screenshot);
-    let pending = PendingPipelines::default();
-    app.insert_resource(pending.clone());
-    app.sub_app_mut(RenderApp)
-        .insert_resource(pending)
-        .add_systems(
-            Render,
-            count_pending_pipelines.in_set(RenderSystems::Cleanup),
-        );
+    .add_plugins(ScreenshotPlugin);
     app
 }
 

@@ -11,7 +11,6 @@ use bevy_windfall::freefall::FallGizmos;
 use bevy_windfall::freefall::{FallPreset, MarkovChain, PrimitiveMotion};
 use bevy_windfall::prelude::*;
 
-use super::common::leaf::{Outline, leaf_mesh};
 use super::{Scene, SceneInfo, place_camera};
 
 /// How far every object falls, m (the Fig. 15 objects from their own heights, shown scaled to
@@ -146,7 +145,7 @@ fn setup(
         density: 500.0,
         ..default()
     };
-    let ellipse = meshes.add(leaf_mesh(Outline::Ovate, 0.36, 0.20, 0.05));
+    let ellipse = meshes.add(ellipse_mesh(0.36, 0.20, Some(FallPreset::Leaf)));
     for (i, motion) in PrimitiveMotion::ALL.into_iter().enumerate() {
         let x = i as f32 * SPACING;
         let release = Vec3::new(0.0, HEIGHT, 0.0);
@@ -184,8 +183,8 @@ fn setup(
     }
     // The paper's Fig. 15, each object from its own height, shown scaled to the same height.
     let coin_mesh = meshes.add(Cylinder::new(0.01, 0.0015));
-    let paper_mesh = meshes.add(leaf_mesh(Outline::Ovate, 0.08, 0.02, 0.0));
-    let leaf = meshes.add(leaf_mesh(Outline::Ovate, 0.073, 0.042, 0.15));
+    let paper_mesh = meshes.add(ellipse_mesh(0.08, 0.02, Some(FallPreset::PaperSheet)));
+    let leaf = meshes.add(FallPreset::Leaf.object().mesh());
     let figures = [
         (
             FallPreset::Coin,
@@ -376,4 +375,18 @@ fn show_info(mut info: ResMut<SceneInfo>) {
               dark below.\nOn the shelf: each fall seen from above (the paper's Fig. 8), \
               magnified to fit."
         .into();
+}
+
+/// An ellipse `major` × `minor` m drawn as `look` ([`FallingObject::mesh`]).
+fn ellipse_mesh(major: f32, minor: f32, look: Option<FallPreset>) -> Mesh {
+    FallingObject {
+        shape: Shape::Ellipse {
+            major,
+            minor,
+            thickness: 3e-4,
+        },
+        look,
+        ..default()
+    }
+    .mesh()
 }

@@ -15,8 +15,7 @@ use bevy_windfall::lod::LodTiers;
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::WindSource;
 
-use super::common::leaf::{Outline, leaf_mesh};
-use super::population::{CANOPY, Canopy, KINDS, LEAVES, leaf};
+use super::population::{CANOPY, Canopy, LEAVES, leaf};
 use super::{Featured, Scene, SceneInfo, common, place_camera};
 
 const PHYSICAL_LEAVES: usize = 30;
@@ -183,44 +182,6 @@ impl Spawner {
 #[derive(Component)]
 struct Resting(Timer);
 
-/// The outline and colours of each kind.
-fn look(kind: FallPreset) -> (Outline, [Color; 3]) {
-    match kind {
-        FallPreset::MapleLeaf => (
-            Outline::Maple,
-            [
-                Color::srgb(0.80, 0.14, 0.06),
-                Color::srgb(0.92, 0.36, 0.07),
-                Color::srgb(0.95, 0.62, 0.10),
-            ],
-        ),
-        FallPreset::OakLeaf => (
-            Outline::Oak,
-            [
-                Color::srgb(0.55, 0.35, 0.12),
-                Color::srgb(0.66, 0.48, 0.16),
-                Color::srgb(0.45, 0.30, 0.12),
-            ],
-        ),
-        FallPreset::BirchLeaf => (
-            Outline::Birch,
-            [
-                Color::srgb(0.95, 0.80, 0.20),
-                Color::srgb(0.88, 0.72, 0.12),
-                Color::srgb(0.80, 0.78, 0.25),
-            ],
-        ),
-        _ => (
-            Outline::Ovate,
-            [
-                Color::srgb(0.90, 0.45, 0.10),
-                Color::srgb(0.75, 0.25, 0.08),
-                Color::srgb(0.85, 0.55, 0.18),
-            ],
-        ),
-    }
-}
-
 #[allow(clippy::too_many_arguments)]
 fn setup(
     mut commands: Commands,
@@ -293,22 +254,8 @@ fn setup(
         Vec2::new(11.0, 9.0),
     );
     commands.entity(grass).insert(here.clone());
-    // One mesh per kind, at its preset's size; three colours per kind.
-    let kinds: Vec<(Handle<Mesh>, [Handle<StandardMaterial>; 3])> = KINDS
-        .iter()
-        .map(|&kind| {
-            let (outline, colours) = look(kind);
-            let (major, minor) = match kind.object().shape {
-                Shape::Ellipse { major, minor, .. } => (major, minor),
-                Shape::Rectangle { length, width, .. } => (length, width),
-                Shape::Disk { diameter, .. } => (diameter, diameter),
-            };
-            let mesh = meshes.add(leaf_mesh(outline, major, minor, 0.18));
-            (mesh, colours.map(|c| common::two_sided(&mut materials, c)))
-        })
-        .collect();
+    // Each leaf is drawn as its preset (`WindfallPlugins`' default look).
     for i in 0..LEAVES {
-        let (mesh, colours) = &kinds[i % KINDS.len()];
         let transform =
             Transform::from_translation(spawner.0.midair()).with_rotation(spawner.0.turn());
         let mut entity = commands.spawn((
@@ -319,8 +266,6 @@ fn setup(
                 near: 15.0,
                 far: 30.0,
             }),
-            Mesh3d(mesh.clone()),
-            MeshMaterial3d(colours[(i / KINDS.len()) % 3].clone()),
             transform,
             here.clone(),
         ));
@@ -357,7 +302,7 @@ fn setup(
     // Physical leaves: rigid 7.3 × 4.2 cm plates, each face with lift and drag.
     let plate = RigidPlate::rectangle(0.073, 0.042, 3e-4, 500.0, AeroCoefficients::default(), 2)
         .expect("a valid plate");
-    let mesh = meshes.add(leaf_mesh(Outline::Ovate, 0.073, 0.042, 0.18));
+    let mesh = meshes.add(FallPreset::Leaf.object().mesh());
     let green = common::two_sided(&mut materials, Color::srgb(0.62, 0.7, 0.15));
     for _ in 0..PHYSICAL_LEAVES {
         let start = spawner.physical_start();

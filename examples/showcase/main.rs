@@ -1,6 +1,6 @@
 //! The showcase: autumn leaves (procedural and physical), the paper's coin falling in water, a
 //! flag, banner or curtain, and a gallery of the free-fall paper's motions, in one app sharing
-//! one wind field. With `--features example_scenes,egui` the crate's inspector tunes the wind, the falling objects, the cloth
+//! one wind field. With `--features egui` the crate's inspector tunes the wind, the falling objects, the cloth
 //! and the aero bodies live.
 //!
 //! Keys: 1 leaves, 2 coin, 3 flag, 4 gallery · G gizmos (off, wind, paths and yarns, all) ·
@@ -8,7 +8,7 @@
 //! anyway) · in the flag scene V flag/banner/curtain, F frozen/non-frozen (the curtain has a
 //! fan).
 //!
-//! `cargo run --example showcase --features example_scenes,egui -- [--scene leaves|coin|flag|gallery]
+//! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag|gallery]
 //! [--fabric flag|banner|curtain] [--view meadow] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`
 //!
 //! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits;
@@ -108,12 +108,7 @@ fn main() {
         seed: 5,
         ..default()
     })))
-    .add_plugins((
-        FrameTimeDiagnosticsPlugin::default(),
-        WindfallDebugPlugin,
-        bevy_windfall::gpu::WindGpuPlugin,
-        bevy_windfall::gpu::LeafCloudRenderPlugin,
-    ))
+    .add_plugins((FrameTimeDiagnosticsPlugin::default(), WindfallDebugPlugin))
     .insert_state(start)
     .init_resource::<SceneInfo>()
     .add_plugins((leaves::plugin, coin::plugin, flag::plugin, gallery::plugin))

@@ -4,11 +4,13 @@ use crate::error::InvalidValue;
 use avian3d::prelude::ReadRigidBodyForces;
 use avian3d::prelude::{ComputedCenterOfMass, ComputedMass, Forces, WriteRigidBodyForces};
 use bevy::app::{App, FixedPostUpdate, Plugin};
+use bevy::asset::Assets;
 use bevy::ecs::prelude::*;
 use bevy::ecs::schedule::{InternedScheduleLabel, ScheduleLabel};
 use bevy::math::Vec3;
-use bevy::mesh::{Indices, Mesh, VertexAttributeValues};
+use bevy::mesh::{Indices, Mesh, Mesh3d, VertexAttributeValues};
 use bevy::reflect::Reflect;
+use bevy::reflect::std_traits::ReflectDefault;
 use bevy::time::Time;
 
 use super::force::face_force;
@@ -42,10 +44,13 @@ use crate::wind::WindField;
 /// # let _ = board;
 /// # Ok::<(), bevy_windfall::aero::AeroError>(())
 /// ```
-#[derive(Component, Clone, Debug, Reflect)]
-#[reflect(Component, Debug)]
+///
+/// Or take the faces from the mesh the entity is drawn with: spawn [`AvianAero::default()`] (no
+/// faces) beside a `Mesh3d`, and the plugin fills them in once the mesh has loaded.
+#[derive(Component, Clone, Debug, Default, Reflect)]
+#[reflect(Component, Default, Debug)]
 pub struct AvianAero {
-    /// Faces in the body's local frame.
+    /// Faces in the body's local frame (empty beside a `Mesh3d`: taken from that mesh).
     pub faces: Vec<Face>,
     /// Coefficients and fluid.
     pub coefficients: AeroCoefficients,
@@ -121,8 +126,32 @@ impl Plugin for AvianAeroPlugin {
     fn build(&self, app: &mut App) {
         app.register_type::<AvianAero>().add_systems(
             self.schedule,
-            apply_aero.in_set(avian3d::schedule::PhysicsSystems::First),
+            (faces_from_meshes, apply_aero)
+                .chain()
+                .in_set(avian3d::schedule::PhysicsSystems::First),
         );
+    }
+}
+
+/// Fills in the faces of an [`AvianAero`] without any from its entity's `Mesh3d`, once loaded.
+fn faces_from_meshes(
+    mut bodies: Query<(&mut AvianAero, &Mesh3d)>,
+    meshes: Option<Res<Assets<Mesh>>>,
+) {
+    let Some(meshes) = meshes else {
+        return;
+    };
+    for (mut aero, handle) in &mut bodies {
+        if !aero.faces.is_empty() {
+            continue;
+        }
+        let Some(mesh) = meshes.get(&handle.0) else {
+            continue;
+        };
+        match AvianAero::from_mesh(mesh, aero.coefficients) {
+            Ok(built) if !built.faces.is_empty() => aero.faces = built.faces,
+            _ => {}
+        }
     }
 }
 

@@ -1,4 +1,4 @@
-//! Lift and drag on one face (`aerodynamic-lift-and-drag.txt`, after Stam and Fiume 1992).
+//! Lift and drag on one face (the lift-and-drag paper's *Aerodynamics* section, after Stam and Fiume 1992).
 
 use bevy::math::{DVec3, Vec3};
 

@@ -1,5 +1,5 @@
 //! Aerodynamics: lift and drag per face on physically driven bodies
-//! (`aerodynamic-lift-and-drag.txt`).
+//! (the lift-and-drag paper's *Aerodynamics* section).
 //!
 //! | quantity | unit |
 //! |---|---|

@@ -1,5 +1,5 @@
 //! Cloth: flags, banners and curtains whose shape comes from P-type Fourier-descriptor yarns
-//! driven by 1/f^β noise angles (`fourier-descriptor-cloth-flapping.txt`).
+//! driven by 1/f^β noise angles (Tynystanova and Chiba, *Fourier Descriptor Animation of Cloth Flapping in Wind*).
 //!
 //! | step | what | source |
 //! |---|---|---|

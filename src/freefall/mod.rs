@@ -1,5 +1,5 @@
 //! Free fall: leaves, paper and coins falling through still or moving air and water
-//! (`free-fall-motion-synthesis.txt`).
+//! (Xie and Miyata, *Realistic Motion Simulations of Objects in Free Fall*).
 //!
 //! | step | what | source |
 //! |---|---|---|
@@ -31,6 +31,7 @@ mod database;
 #[cfg(feature = "gizmos")]
 mod gizmos;
 mod lod;
+mod look;
 mod markov;
 mod model;
 mod motion;
@@ -53,6 +54,7 @@ pub use gizmos::FallGizmos;
 #[cfg(feature = "gizmos")]
 pub(crate) use gizmos::FallGizmosPlugin;
 pub use lod::FallLod;
+pub(crate) use look::{CLOUD_POINTS, mix, outline};
 pub use markov::{MarkovChain, MarkovError};
 pub use model::FallModel;
 pub use motion::FallScales;

@@ -14,6 +14,7 @@ use super::markov::MarkovChain;
 use super::model::FallModel;
 use super::motion::{FallScales, STROUHAL};
 use super::path::FallPath;
+use super::presets::FallPreset;
 use super::regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape, regime};
 use super::release::FallRelease;
 use super::tiers::TierClock;
@@ -78,6 +79,11 @@ pub struct FallingObject {
     pub wind_tilt: f32,
     /// The Markov chain of its motions (`None`: the [`FallModel`]'s).
     pub markov: Option<MarkovChain>,
+    /// What it is drawn as (outline and colours, see [`mesh`](Self::mesh)):
+    /// [`FallPreset::object`](super::presets::FallPreset::object) sets its preset; `None` draws
+    /// its [`Shape`] in autumn colours. Only the look: changing it does not let the object go
+    /// again.
+    pub look: Option<FallPreset>,
 }
 
 impl Default for FallingObject {
@@ -97,6 +103,7 @@ impl Default for FallingObject {
             deviation: 1.0,
             wind_tilt: 0.6,
             markov: None,
+            look: None,
         }
     }
 }
@@ -296,6 +303,30 @@ pub struct FreeFallSettings {
     pub ground_height: f32,
 }
 
+/// The objects of the presets (here, beside the component, so that the presets need not know it).
+impl FallPreset {
+    /// The object: shape, density, fluid, main motion and chain, drawn as this preset; seed 0,
+    /// the default k, W.
+    pub fn object(self) -> FallingObject {
+        let (shape, density, fluid, main_motion) = self.body();
+        FallingObject {
+            shape,
+            density,
+            fluid,
+            main_motion,
+            markov: Some(self.chain()),
+            look: Some(self),
+            ..FallingObject::default()
+        }
+    }
+}
+
+impl From<FallPreset> for FallingObject {
+    fn from(preset: FallPreset) -> Self {
+        preset.object()
+    }
+}
+
 impl Described for FallingObject {
     type Invalid = FallingObjectInvalid;
     type Key = FallingObject;
@@ -307,8 +338,12 @@ impl Described for FallingObject {
     const SUBJECT: &'static str = "FallingObject";
     const CONSEQUENCE: &'static str = "it does not fall";
 
+    /// The object without its look: a new look redraws it, it does not let it go again.
     fn key(&self) -> FallingObject {
-        self.clone()
+        FallingObject {
+            look: None,
+            ..self.clone()
+        }
     }
 
     /// Lets the object go from its transform; a fall released again in mid-air keeps the

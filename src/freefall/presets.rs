@@ -21,7 +21,6 @@
 use bevy::reflect::Reflect;
 
 use super::markov::MarkovChain;
-use super::object::FallingObject;
 use super::regime::{Fluid, PrimitiveMotion, Shape};
 
 /// A named object: shape, density, fluid, main motion and Markov chain.
@@ -81,7 +80,7 @@ impl FallPreset {
     }
 
     /// Shape, density (kg/m³), fluid and forced main motion.
-    fn body(self) -> (Shape, f32, Fluid, Option<PrimitiveMotion>) {
+    pub(super) fn body(self) -> (Shape, f32, Fluid, Option<PrimitiveMotion>) {
         use PrimitiveMotion::*;
         let ellipse = |major, minor, thickness| Shape::Ellipse {
             major,
@@ -170,24 +169,5 @@ impl FallPreset {
         }
         MarkovChain::from_dwell_times(initial, dwell, next)
             .expect("every preset's chain is a valid upper-triangular matrix")
-    }
-
-    /// The object: shape, density, fluid, main motion and chain; seed 0, the default k, W.
-    pub fn object(self) -> FallingObject {
-        let (shape, density, fluid, main_motion) = self.body();
-        FallingObject {
-            shape,
-            density,
-            fluid,
-            main_motion,
-            markov: Some(self.chain()),
-            ..FallingObject::default()
-        }
-    }
-}
-
-impl From<FallPreset> for FallingObject {
-    fn from(preset: FallPreset) -> Self {
-        preset.object()
     }
 }

@@ -26,7 +26,9 @@ use bevy::render::storage::ShaderBuffer;
 use bevy::shader::ShaderRef;
 
 use crate::freefall::cloud::LeafPose;
-use crate::freefall::{LeafCloud, LeafCloudState, Shape};
+use crate::freefall::{
+    CLOUD_POINTS, FallPreset, FallingObject, LeafCloud, LeafCloudState, Shape, mix, outline,
+};
 
 /// A [`StandardMaterial`] whose mesh is a whole leaf cloud (see [`LeafCloudRenderPlugin`]).
 pub type LeafCloudMaterial = ExtendedMaterial<StandardMaterial, CloudPoses>;
@@ -58,7 +60,8 @@ impl MaterialExtension for CloudPoses {
 }
 
 /// How a [`LeafCloud`]'s leaves look: each leaf takes a colour of the palette (chosen by a hash
-/// of its index) darkened or lightened by up to `variation`. Optional: without it, autumn.
+/// of its index) darkened or lightened by up to `variation`. Optional: without it, the colours
+/// of the cloud's object ([`LeafCloudLook::of`]).
 #[derive(Component, Clone, Debug, PartialEq, Reflect)]
 #[reflect(Component, Default, Debug)]
 pub struct LeafCloudLook {
@@ -94,13 +97,15 @@ pub(crate) struct LeafCloudVisual {
     pub poses: Handle<ShaderBuffer>,
     /// Leaves drawn.
     count: usize,
-    shape: Shape,
+    /// The object's shape and look.
+    object: (Shape, Option<FallPreset>),
     look: LeafCloudLook,
 }
 
 /// Draws every [`LeafCloud`]: gives it a mesh and a [`LeafCloudMaterial`] and writes its poses
 /// each frame, after [`WindfallSystems::WriteBack`](crate::schedule::WindfallSystems::WriteBack) posed
-/// them. Add it after `DefaultPlugins`.
+/// them. [`WindfallPlugins`](crate::WindfallPlugins) adds it in an app with the renderer (through
+/// [`WindfallRenderPlugin`](super::WindfallRenderPlugin)).
 ///
 /// The mesh holds `count` copies of the leaf's outline at the origin, each vertex tagged with its
 /// leaf's index (the second UV set) and coloured from the cloud's [`LeafCloudLook`]; the vertex
@@ -113,12 +118,10 @@ pub(crate) struct LeafCloudVisual {
 ///
 /// ```no_run
 /// use bevy::prelude::*;
-/// use bevy_windfall::freefall::{LeafCloud, LodFocus};
-/// use bevy_windfall::gpu::LeafCloudRenderPlugin;
 /// use bevy_windfall::prelude::*;
 ///
 /// App::new()
-///     .add_plugins((DefaultPlugins, WindfallPlugins, LeafCloudRenderPlugin))
+///     .add_plugins((DefaultPlugins, WindfallPlugins))
 ///     .add_systems(Startup, |mut commands: Commands| {
 ///         commands.spawn((Camera3d::default(), LodFocus, Transform::from_xyz(0.0, 3.0, 20.0)));
 ///         commands.spawn(LeafCloud { count: 50_000, ..default() });
@@ -129,7 +132,16 @@ pub(crate) struct LeafCloudVisual {
 pub struct LeafCloudRenderPlugin;
 
 impl Plugin for LeafCloudRenderPlugin {
+    /// Not unique: [`WindfallRenderPlugin`](super::WindfallRenderPlugin) adds it, and so may you.
+    fn is_unique(&self) -> bool {
+        false
+    }
+
     fn build(&self, app: &mut App) {
+        // Added twice (by you and by `WindfallPlugins`): once is enough.
+        if app.is_plugin_added::<bevy::pbr::MaterialPlugin<LeafCloudMaterial>>() {
+            return;
+        }
         bevy::shader::load_shader_library!(app, "math.wgsl");
         bevy::asset::embedded_asset!(app, "cloud.wgsl");
         app.register_type::<LeafCloudLook>()
@@ -162,13 +174,12 @@ fn attach_visuals(
         let Some(leaves) = state.leaves() else {
             continue;
         };
-        let look = look.cloned().unwrap_or_default();
+        let look = look
+            .cloned()
+            .unwrap_or_else(|| LeafCloudLook::of(&cloud.object));
         let count = drawn(leaves.len());
-        if visual.is_some_and(|v| {
-            v.count == count
-                && v.shape == cloud.object.shape
-                && format!("{:?}", v.look) == format!("{look:?}")
-        }) {
+        let object = (cloud.object.shape, cloud.object.look);
+        if visual.is_some_and(|v| v.count == count && v.object == object && v.look == look) {
             continue;
         }
         if count < leaves.len() {
@@ -185,6 +196,8 @@ fn attach_visuals(
             base: StandardMaterial {
                 base_color: Color::WHITE,
                 perceptual_roughness: look.roughness,
+                // Lit from behind too: a leaf seen from below glows (see the default look).
+                diffuse_transmission: 0.45,
                 double_sided: true,
                 cull_mode: None::<Face>,
                 ..Default::default()
@@ -193,7 +206,7 @@ fn attach_visuals(
                 poses: poses.clone(),
             },
         });
-        let mesh = meshes.add(cloud_mesh(&cloud.object.shape, count as u32, &look));
+        let mesh = meshes.add(cloud_mesh(&cloud.object, count as u32, &look));
         commands.entity(entity).insert((
             Mesh3d(mesh),
             MeshMaterial3d(material),
@@ -201,7 +214,7 @@ fn attach_visuals(
             LeafCloudVisual {
                 poses,
                 count,
-                shape: cloud.object.shape,
+                object,
                 look,
             },
         ));
@@ -240,83 +253,53 @@ fn pack_pose(pose: &LeafPose, data: &mut Vec<u8>) {
     }
 }
 
-/// The outline of one leaf in its own frame (the plate in XZ, long axis Z), convex: an ellipse
-/// as a leaf (a hexagon pointed at the tip, rounder at the stalk), a disk as an octagon, a
-/// rectangle as itself.
-fn outline(shape: &Shape) -> Vec<Vec3> {
-    match *shape {
-        Shape::Ellipse { major, minor, .. } => {
-            let (x, z) = (0.5 * minor, 0.5 * major);
-            // Counter-clockwise seen from +Y (+Z toward −X), as the fan's faces need.
-            [
-                (0.0, 1.0),
-                (-0.9, 0.25),
-                (-0.75, -0.55),
-                (0.0, -0.9),
-                (0.75, -0.55),
-                (0.9, 0.25),
-            ]
-            .map(|(a, b)| Vec3::new(a * x, 0.0, b * z))
-            .to_vec()
-        }
-        Shape::Disk { diameter, .. } => (0..8)
-            .map(|k| {
-                let a = std::f32::consts::TAU * k as f32 / 8.0;
-                0.5 * diameter * Vec3::new(-a.sin(), 0.0, a.cos())
-            })
-            .collect(),
-        Shape::Rectangle { length, width, .. } => {
-            let (x, z) = (0.5 * width, 0.5 * length);
-            vec![
-                Vec3::new(-x, 0.0, -z),
-                Vec3::new(x, 0.0, -z),
-                Vec3::new(x, 0.0, z),
-                Vec3::new(-x, 0.0, z),
-            ]
-        }
-    }
-}
-
-/// Most leaves of one cloud that are drawn: the vertex buffer (6–8 vertices of 56 bytes a leaf)
-/// stays under 256 MiB, wgpu's default largest buffer. Leaves beyond are simulated, not drawn.
-pub(crate) const MAX_DRAWN_LEAVES: usize = 500_000;
+/// Most leaves of one cloud that are drawn: the vertex buffer (up to 15 vertices of 56 bytes a
+/// leaf) stays under 256 MiB, wgpu's default largest buffer. Leaves beyond are simulated, not
+/// drawn.
+pub(crate) const MAX_DRAWN_LEAVES: usize = 300_000;
 
 /// How many of `leaves` are drawn.
 fn drawn(leaves: usize) -> usize {
     leaves.min(MAX_DRAWN_LEAVES)
 }
 
-/// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::gpu::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of `shape`'s outline at the origin,
-/// each a triangle fan facing +Y, tagged with its index in UV set 1 and coloured from `look`.
-pub(crate) fn cloud_mesh(shape: &Shape, count: u32, look: &LeafCloudLook) -> Mesh {
-    let corners = outline(shape);
+/// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::gpu::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of
+/// `object`'s outline (its look's, as [`FallingObject::mesh`] draws it, with fewer points) at the
+/// origin, each a flat fan from its centre facing +Y, tagged with its index in UV set 1 and
+/// coloured from `look`.
+pub(crate) fn cloud_mesh(object: &FallingObject, count: u32, look: &LeafCloudLook) -> Mesh {
+    let (centre, corners) = outline(object.look, &object.shape, CLOUD_POINTS);
+    let centre = Vec3::new(centre.x, 0.0, centre.y);
+    let corners: Vec<Vec3> = corners.iter().map(|p| Vec3::new(p.x, 0.0, p.y)).collect();
     let n = corners.len() as u32;
+    let per_leaf = (n + 1) as usize;
     let count = drawn(count as usize).max(1) as u32;
     let palette: Vec<LinearRgba> = if look.palette.is_empty() {
         vec![LinearRgba::WHITE]
     } else {
         look.palette.iter().map(|c| c.to_linear()).collect()
     };
-    let mut positions = Vec::with_capacity((count * n) as usize);
-    let mut uvs = Vec::with_capacity((count * n) as usize);
-    let mut tags = Vec::with_capacity((count * n) as usize);
-    let mut colors = Vec::with_capacity((count * n) as usize);
-    let mut indices = Vec::with_capacity((count * (n - 2) * 3) as usize);
+    let total = count as usize * per_leaf;
+    let mut positions = Vec::with_capacity(total);
+    let mut uvs = Vec::with_capacity(total);
+    let mut tags = Vec::with_capacity(total);
+    let mut colors = Vec::with_capacity(total);
+    let mut indices = Vec::with_capacity(count as usize * n as usize * 3);
     let variation = look.variation.clamp(0.0, 1.0);
     for leaf in 0..count {
-        let h = hash(leaf);
+        let h = mix(u64::from(leaf));
         let base = palette[(h % palette.len() as u64) as usize];
         let shade = 1.0 + variation * (((h >> 32) & 0xFFFF) as f32 / 32767.5 - 1.0);
         let color = [base.red * shade, base.green * shade, base.blue * shade, 1.0];
-        let first = leaf * n;
-        for c in &corners {
+        let first = leaf * (n + 1);
+        for c in std::iter::once(&centre).chain(&corners) {
             positions.push(c.to_array());
             uvs.push([0.5 + c.x, 0.5 + c.z]);
             tags.push([leaf as f32, 0.0]);
             colors.push(color);
         }
-        for k in 1..n - 1 {
-            indices.extend_from_slice(&[first, first + k + 1, first + k]);
+        for k in 0..n {
+            indices.extend_from_slice(&[first, first + 1 + k, first + 1 + (k + 1) % n]);
         }
     }
     let normals = vec![[0.0, 1.0, 0.0]; positions.len()];
@@ -332,26 +315,28 @@ pub(crate) fn cloud_mesh(shape: &Shape, count: u32, look: &LeafCloudLook) -> Mes
     .with_inserted_indices(Indices::U32(indices))
 }
 
-/// SplitMix64 of a leaf index: its colour and shade.
-fn hash(leaf: u32) -> u64 {
-    let mut z = u64::from(leaf).wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
 /// Limits and constants of [`LeafCloudRenderPlugin`].
 impl LeafCloudRenderPlugin {
-    /// Most leaves of one cloud that are drawn: the vertex buffer (6–8 vertices of 56 bytes a leaf)
-    /// stays under 256 MiB, wgpu's default largest buffer. Leaves beyond are simulated, not drawn.
+    /// Most leaves of one cloud that are drawn: the vertex buffer (up to 15 vertices of 56 bytes
+    /// a leaf) stays under 256 MiB, wgpu's default largest buffer. Leaves beyond are simulated,
+    /// not drawn.
     pub const MAX_DRAWN_LEAVES: usize = MAX_DRAWN_LEAVES;
 }
 
 impl LeafCloudLook {
     /// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::gpu::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of
-    /// `shape`'s outline at the origin, each a triangle fan facing +Y, tagged with its index in
-    /// UV set 1 and coloured from this look: the mesh a cloud is drawn with.
-    pub fn mesh(&self, shape: &Shape, count: u32) -> Mesh {
-        cloud_mesh(shape, count, self)
+    /// `object`'s outline at the origin, each a fan facing +Y, tagged with its index in UV set 1
+    /// and coloured from this look: the mesh a cloud of `object` is drawn with.
+    pub fn mesh(&self, object: &FallingObject, count: u32) -> Mesh {
+        cloud_mesh(object, count, self)
+    }
+
+    /// The look of a cloud of `object` without a [`LeafCloudLook`]: its palette
+    /// ([`FallingObject::palette`]), each leaf lightened or darkened by up to 25 %.
+    pub fn of(object: &FallingObject) -> Self {
+        Self {
+            palette: object.palette().to_vec(),
+            ..Self::default()
+        }
     }
 }

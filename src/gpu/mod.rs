@@ -32,10 +32,12 @@
 //! after hours of play. `tests/gpu_wind.rs` checks the GPU against the CPU at thousands of points.
 
 mod cloud;
+mod look;
 mod params;
 mod sway;
 
 pub use cloud::{CloudPoses, LeafCloudLook, LeafCloudMaterial, LeafCloudRenderPlugin};
+pub use look::WindfallRenderPlugin;
 
 use params::{GpuWindParams, node_bytes};
 pub use sway::{SwaySettings, WindSway, WindSwayMaterial};
@@ -49,7 +51,9 @@ use bevy::render::storage::ShaderBuffer;
 use crate::wind::WindField;
 
 /// Uploads the [`WindField`] to the GPU and registers the WGSL module `bevy_windfall::wind`.
-/// Add it after `DefaultPlugins` (it needs the renderer) and a [`WindPlugin`](crate::wind::WindPlugin).
+/// [`WindfallPlugins`](crate::WindfallPlugins) adds it (through [`WindfallRenderPlugin`]) in an
+/// app with the renderer; on its own, add it after `DefaultPlugins` and a
+/// [`WindPlugin`](crate::wind::WindPlugin).
 ///
 /// # Example
 ///
@@ -59,7 +63,7 @@ use crate::wind::WindField;
 /// use bevy_windfall::gpu::WindGpuPlugin;
 ///
 /// App::new()
-///     .add_plugins((DefaultPlugins, WindfallPlugins, WindGpuPlugin))
+///     .add_plugins((DefaultPlugins, WindPlugin::default(), WindGpuPlugin))
 ///     .run();
 /// ```
 #[derive(Default)]
@@ -90,6 +94,10 @@ pub struct WindGpuUploads {
 
 impl Plugin for WindGpuPlugin {
     fn build(&self, app: &mut App) {
+        // Added twice (by you and by `WindfallPlugins`): once is enough.
+        if app.world().contains_resource::<WindGpuUploads>() {
+            return;
+        }
         bevy::shader::load_shader_library!(app, "math.wgsl");
         bevy::shader::load_shader_library!(app, "wind.wgsl");
         bevy::asset::embedded_asset!(app, "sway.wgsl");
@@ -98,7 +106,15 @@ impl Plugin for WindGpuPlugin {
             .add_systems(PostUpdate, (upload_wind, refresh_sway_materials).chain());
     }
 
+    /// Not unique: [`WindfallRenderPlugin`] adds it, and so may you.
+    fn is_unique(&self) -> bool {
+        false
+    }
+
     fn finish(&self, app: &mut App) {
+        if app.world().contains_resource::<WindGpuBuffers>() {
+            return;
+        }
         let Some(mut buffers) = app.world_mut().get_resource_mut::<Assets<ShaderBuffer>>() else {
             warn!("WindGpuPlugin needs the renderer (add it after DefaultPlugins)");
             return;

@@ -1,7 +1,7 @@
 // The wind of a bevy_windfall `WindField` on the GPU: the same log-law mean wind, the same
 // periodic grid read by the same multilinear interpolation, the same shelters and local sources
 // as `WindField::velocity_at` on the CPU (see `src/wind/field.rs`, `source.rs`, `shelter.rs`;
-// equation numbers are those of free-fall-motion-synthesis.txt).
+// equation numbers are those of Realistic Motion Simulations of Objects in Free Fall).
 //
 // Bindings: `wind_nodes` (binding 100) and `wind_params` (binding 101) in the bind group
 // `WIND_BIND_GROUP` if that shader def is set (a compute pass), otherwise in the material's bind

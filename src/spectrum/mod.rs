@@ -1,8 +1,8 @@
 //! Spectral 1/f^β noise (fractional Brownian motion) in any number of dimensions.
 //!
 //! A random spectrum is shaped so that the power spectral density of an n-dimensional field falls
-//! as `1/|f|^(β+n−1)` (eq. 13 of `free-fall-motion-synthesis.txt`; eq. 1 and §3.1 of
-//! `fourier-descriptor-cloth-flapping.txt`, where the text notes that the exponent must be
+//! as `1/|f|^(β+n−1)` (eq. 13 of *Realistic Motion Simulations of Objects in Free Fall* (Xie and Miyata); eq. 1 and §3.1 of
+//! *Fourier Descriptor Animation of Cloth Flapping in Wind* (Tynystanova and Chiba), where the text notes that the exponent must be
 //! `β+n−1` for n-dimensional noise), then brought to real space by an inverse FFT.
 //! Along any straight line through the field the power spectrum then falls as `1/f^β`, which is
 //! what the tests measure.

@@ -1,6 +1,6 @@
 //! Wind: a [`WindField`] resource that every other part of the crate samples.
 //!
-//! The model follows §4.1–4.2 of `free-fall-motion-synthesis.txt`:
+//! The model follows §4.1–4.2 of *Realistic Motion Simulations of Objects in Free Fall* (Xie and Miyata):
 //!
 //! | quantity | symbol | unit | source |
 //! |---|---|---|---|

@@ -20,9 +20,9 @@ use crate::spectrum::{GridShape, SpectrumError, Synthesizer};
 /// [`WindField::set_clock`] clamp to ±this, so the clock and [`WindField::time`] stay finite.
 pub(crate) const MAX_CLOCK: f64 = 1.0e12;
 
-/// Wind velocity anywhere in space and time: a logarithmic mean profile (eq. 10 of
-/// `free-fall-motion-synthesis.txt`) plus three independent 1/f^β turbulence components with the
-/// per-axis ratios of eq. 12, either on one horizontal plane carried to other heights by eq. 14
+/// Wind velocity anywhere in space and time: a logarithmic mean profile (eq. 10 of the
+/// free-fall paper, Xie and Miyata, *Realistic Motion Simulations of Objects in Free Fall*) plus
+/// three independent 1/f^β turbulence components with the per-axis ratios of eq. 12, either on one horizontal plane carried to other heights by eq. 14
 /// or in a full volume, frozen (Taylor) or evolving.
 ///
 /// Sampling interpolates grid nodes linearly and wraps periodically, so every finite position and

@@ -1,0 +1,294 @@
+//! How a falling object looks: its outline (a maple, oak or birch leaf, an ovate leaf, an
+//! ellipse of paper, a coin, a card) and its colours, from its [`FallPreset`] or, without one,
+//! from its [`Shape`]. One source for the single objects' meshes, the leaf cloud's mesh and the
+//! examples.
+//!
+//! Hand-written: the outlines are polar functions chosen by eye (no crate draws leaves).
+
+use std::f32::consts::{PI, TAU};
+
+use bevy::asset::RenderAssetUsages;
+use bevy::color::Color;
+use bevy::math::{Vec2, Vec3};
+use bevy::mesh::{Indices, Mesh, PrimitiveTopology};
+
+use super::object::FallingObject;
+use super::presets::FallPreset;
+use super::regime::Shape;
+
+/// Reds, oranges, yellows and browns: the look of a leaf without a preset.
+pub(crate) const AUTUMN: [Color; 5] = [
+    Color::srgb(0.80, 0.30, 0.08),
+    Color::srgb(0.90, 0.55, 0.10),
+    Color::srgb(0.85, 0.72, 0.20),
+    Color::srgb(0.55, 0.28, 0.10),
+    Color::srgb(0.70, 0.15, 0.08),
+];
+
+/// Outline points of a single object's mesh (a cloud draws [`CLOUD_POINTS`]).
+const SINGLE_POINTS: usize = 72;
+
+/// Outline points of each leaf of a cloud: enough for the maple's five lobes at a distance.
+pub(crate) const CLOUD_POINTS: usize = 14;
+
+impl FallPreset {
+    /// The colours objects of this preset are drawn in (sRGB); each object takes one by its seed.
+    pub fn palette(self) -> &'static [Color] {
+        const COIN: [Color; 2] = [Color::srgb(0.80, 0.81, 0.83), Color::srgb(0.70, 0.72, 0.75)];
+        const PAPER: [Color; 2] = [Color::srgb(0.96, 0.95, 0.91), Color::srgb(0.93, 0.93, 0.96)];
+        const GREEN: [Color; 3] = [
+            Color::srgb(0.33, 0.55, 0.14),
+            Color::srgb(0.45, 0.62, 0.18),
+            Color::srgb(0.56, 0.64, 0.16),
+        ];
+        const MAPLE: [Color; 4] = [
+            Color::srgb(0.82, 0.20, 0.06),
+            Color::srgb(0.92, 0.45, 0.08),
+            Color::srgb(0.72, 0.12, 0.05),
+            Color::srgb(0.95, 0.62, 0.12),
+        ];
+        const OAK: [Color; 4] = [
+            Color::srgb(0.58, 0.34, 0.12),
+            Color::srgb(0.66, 0.44, 0.16),
+            Color::srgb(0.48, 0.28, 0.10),
+            Color::srgb(0.72, 0.52, 0.20),
+        ];
+        const BIRCH: [Color; 3] = [
+            Color::srgb(0.96, 0.78, 0.15),
+            Color::srgb(0.90, 0.68, 0.10),
+            Color::srgb(0.86, 0.80, 0.26),
+        ];
+        const CARD: [Color; 2] = [Color::srgb(0.97, 0.97, 0.95), Color::srgb(0.80, 0.10, 0.12)];
+        const SAMARA: [Color; 2] = [Color::srgb(0.80, 0.74, 0.44), Color::srgb(0.70, 0.66, 0.38)];
+        match self {
+            Self::Coin => &COIN,
+            Self::PaperSheet => &PAPER,
+            Self::Leaf => &GREEN,
+            Self::MapleLeaf => &MAPLE,
+            Self::OakLeaf => &OAK,
+            Self::BirchLeaf => &BIRCH,
+            Self::PlayingCard => &CARD,
+            Self::Samara => &SAMARA,
+        }
+    }
+}
+
+impl FallingObject {
+    /// The colours it is drawn in: its [`look`](Self::look)'s palette, autumn without one.
+    pub fn palette(&self) -> &'static [Color] {
+        self.look.map_or(&AUTUMN, FallPreset::palette)
+    }
+
+    /// Its colour: one of its [`palette`](Self::palette), chosen by its seed.
+    pub fn color(&self) -> Color {
+        self.palette()[self.color_index()]
+    }
+
+    /// Which colour of its palette it takes.
+    pub(crate) fn color_index(&self) -> usize {
+        (mix(self.seed) % self.palette().len() as u64) as usize
+    }
+
+    /// Its mesh at its size: the plate in the local XZ plane (long axis Z, faces toward ±Y, as
+    /// it falls), outlined as its [`look`](Self::look) (a maple, oak or birch leaf, …) or, without
+    /// one, as its [`Shape`]; leaves are folded a little along the midrib so that light shows
+    /// their shape from either side. Flat normals; draw it with a two-sided material.
+    pub fn mesh(&self) -> Mesh {
+        let (centre, outline) = outline(self.look, &self.shape, SINGLE_POINTS);
+        let (_, major) = extent(&self.shape);
+        let fold = fold(self.look, &self.shape);
+        // The fold along the midrib, and the tip and stalk curling up a little.
+        let lift = |p: Vec2| {
+            let curl = if fold > 0.0 {
+                0.3 * p.y * p.y / major
+            } else {
+                0.0
+            };
+            Vec3::new(p.x, fold * p.x.abs() + curl, p.y)
+        };
+        let mut positions = vec![lift(centre)];
+        positions.extend(outline.iter().map(|&p| lift(p)));
+        let n = outline.len() as u32;
+        let indices = (0..n).flat_map(|i| [0, 1 + i, 1 + (i + 1) % n]).collect();
+        let mut mesh = Mesh::new(
+            PrimitiveTopology::TriangleList,
+            RenderAssetUsages::default(),
+        )
+        .with_inserted_attribute(
+            Mesh::ATTRIBUTE_POSITION,
+            positions.iter().map(|p| p.to_array()).collect::<Vec<_>>(),
+        )
+        .with_inserted_indices(Indices::U32(indices));
+        mesh.duplicate_vertices();
+        mesh.compute_flat_normals();
+        mesh
+    }
+}
+
+/// (width along X, length along Z) of a shape's plate, m.
+fn extent(shape: &Shape) -> (f32, f32) {
+    match *shape {
+        Shape::Disk { diameter, .. } => (diameter, diameter),
+        Shape::Rectangle { length, width, .. } => (width, length),
+        Shape::Ellipse { major, minor, .. } => (minor, major),
+    }
+}
+
+/// Rise of a leaf's edges per metre of half-width: leaves fold, paper, cards and coins do not.
+fn fold(look: Option<FallPreset>, shape: &Shape) -> f32 {
+    match (look, shape) {
+        (_, Shape::Disk { .. } | Shape::Rectangle { .. }) => 0.0,
+        (Some(FallPreset::PaperSheet | FallPreset::Coin | FallPreset::PlayingCard), _) => 0.0,
+        _ => 0.18,
+    }
+}
+
+/// The outline as it would be drawn, and the point it is star-shaped about: `points` points from
+/// the tip (+Z) toward +X, so that a fan `(centre, p[i], p[i + 1])` faces +Y, scaled to the
+/// shape's width (X) and length (Z) about the middle of its bounding box. A disk or a rectangle
+/// keeps its own outline whatever the look says.
+pub(crate) fn outline(look: Option<FallPreset>, shape: &Shape, points: usize) -> (Vec2, Vec<Vec2>) {
+    let (width, length) = extent(shape);
+    let half = 0.5 * Vec2::new(width, length);
+    let (centre, unit): (Vec2, Vec<Vec2>) = match shape {
+        Shape::Rectangle { .. } => {
+            // The four corners, each edge split so a fan from the centre stays even.
+            let corners = [(1.0, 1.0), (1.0, -1.0), (-1.0, -1.0), (-1.0, 1.0)];
+            let per_edge = (points / 4).max(1);
+            let edges = (0..4).flat_map(|e| {
+                let a = Vec2::from(corners[e]);
+                let b = Vec2::from(corners[(e + 1) % 4]);
+                (0..per_edge).map(move |k| a.lerp(b, k as f32 / per_edge as f32))
+            });
+            (Vec2::ZERO, edges.collect())
+        }
+        _ => {
+            let kind = match shape {
+                Shape::Disk { .. } => Kind::Round,
+                _ => Kind::of(look),
+            };
+            let raw: Vec<Vec2> = (0..points.max(3))
+                .map(|i| kind.point(TAU * i as f32 / points.max(3) as f32))
+                .collect();
+            normalise(raw)
+        }
+    };
+    (centre * half, unit.into_iter().map(|p| p * half).collect())
+}
+
+/// Scales a raw outline (star-shaped about the origin) into [−1, 1]² about its bounding box's
+/// middle; returns where the origin went, and the outline.
+fn normalise(raw: Vec<Vec2>) -> (Vec2, Vec<Vec2>) {
+    let (lo, hi) = raw.iter().fold((Vec2::MAX, Vec2::MIN), |(lo, hi), p| {
+        (lo.min(*p), hi.max(*p))
+    });
+    let middle = 0.5 * (lo + hi);
+    let scale = 2.0 / (hi - lo).max(Vec2::splat(f32::MIN_POSITIVE));
+    let outline = raw.into_iter().map(|p| (p - middle) * scale).collect();
+    (-middle * scale, outline)
+}
+
+/// The outline families.
+#[derive(Clone, Copy)]
+enum Kind {
+    /// A disk or an ellipse of paper.
+    Round,
+    /// Ovate, pointed at the tip (the paper's leaf, a samara's wing).
+    Ovate,
+    /// Five pointed lobes (Norway maple).
+    Maple,
+    /// Rounded lobes along the sides (oak).
+    Oak,
+    /// Ovate with a toothed edge (birch).
+    Birch,
+}
+
+impl Kind {
+    fn of(look: Option<FallPreset>) -> Self {
+        match look {
+            Some(FallPreset::MapleLeaf) => Self::Maple,
+            Some(FallPreset::OakLeaf) => Self::Oak,
+            Some(FallPreset::BirchLeaf) => Self::Birch,
+            Some(FallPreset::Coin | FallPreset::PaperSheet | FallPreset::PlayingCard) => {
+                Self::Round
+            }
+            Some(FallPreset::Leaf | FallPreset::Samara) | None => Self::Ovate,
+        }
+    }
+
+    /// The point at parameter `t` ∈ [0, 2π): 0 at the tip (+Z), π at the stalk, toward +X first.
+    fn point(self, t: f32) -> Vec2 {
+        // Ovate: x = sin t · w(t), z = cos t with w = ((1 − cos t)/2)^0.4: pointed at the tip,
+        // rounded at the stalk.
+        let width = (0.5 * (1.0 - t.cos())).powf(0.4);
+        let ovate = Vec2::new(t.sin() * width, t.cos());
+        match self {
+            Self::Round => Vec2::new(t.sin(), t.cos()),
+            Self::Ovate => ovate,
+            Self::Birch => ovate * Vec2::new(1.0 + 0.04 * (13.0 * t).sin().abs(), 1.0),
+            // Lobes as radial bulges, so that the outline stays star-shaped.
+            Self::Oak => ovate * (0.75 + 0.25 * (4.5 * t).cos().abs().powf(0.6)),
+            Self::Maple => {
+                // Lobes at 0, ±0.95 and ±1.9 rad from the tip; a notch at the stalk.
+                let a = if t > PI { TAU - t } else { t };
+                let lobe =
+                    |centre: f32, w: f32, height: f32| height * (-((a - centre) / w).powi(2)).exp();
+                let lobes = lobe(0.0, 0.26, 1.0)
+                    .max(lobe(0.95, 0.24, 0.9))
+                    .max(lobe(1.9, 0.22, 0.65));
+                let stalk = 1.0 - 0.5 * (-((a - PI) / 0.3).powi(2)).exp();
+                let r = (0.4 + 0.6 * lobes) * stalk;
+                Vec2::new(r * t.sin(), r * t.cos())
+            }
+        }
+    }
+}
+
+/// SplitMix64's finaliser: a colour index from a seed or a leaf's index.
+pub(crate) fn mix(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every outline spans its shape exactly and winds so that the fan's faces point up (+Y),
+    /// for every preset and without one.
+    #[test]
+    fn outlines_span_their_shape_and_wind_one_way() {
+        let looks = FallPreset::ALL.map(Some).into_iter().chain([None]);
+        for look in looks {
+            let object = FallingObject {
+                look,
+                ..look.map_or_else(FallingObject::default, FallPreset::object)
+            };
+            let (width, length) = extent(&object.shape);
+            for points in [CLOUD_POINTS, SINGLE_POINTS] {
+                let (centre, o) = outline(look, &object.shape, points);
+                let (lo, hi) = o.iter().fold((Vec2::MAX, Vec2::MIN), |(lo, hi), p| {
+                    (lo.min(*p), hi.max(*p))
+                });
+                let span = hi - lo;
+                assert!(
+                    (span.x - width).abs() < 1e-3 * width,
+                    "{look:?}: {span} vs {width}"
+                );
+                assert!((span.y - length).abs() < 1e-3 * length, "{look:?}: {span}");
+                // Every fan triangle, in (z, x) order: positive when it faces +Y.
+                for i in 0..o.len() {
+                    let (a, b) = (o[i] - centre, o[(i + 1) % o.len()] - centre);
+                    let twice_area = a.y * b.x - b.y * a.x;
+                    assert!(twice_area > 0.0, "{look:?}: triangle {i} faces −Y");
+                }
+            }
+            let mesh = object.mesh();
+            let normals = mesh.attribute(Mesh::ATTRIBUTE_NORMAL).unwrap().as_float3();
+            let up = normals.unwrap().iter().filter(|n| n[1] > 0.5).count();
+            assert_eq!(up, mesh.count_vertices(), "{look:?}: every face toward +Y");
+        }
+    }
+}
