@@ -86,16 +86,27 @@ def write_png(path, width, height, rgb):
     open(path, "wb").write(png)
 
 
-def shares(rgb):
-    """Shares of pixels that are flag red, cloth blue and leaf yellow (sampled every 7th)."""
-    red = blue = yellow = n = 0
+def shares(rgb, width):
+    """Shares of pixels that are flag red and cloth blue (every 7th pixel), and leaf specks: runs
+    of autumn colours (red above green above blue, as `tests/screenshots.rs` counts them) per
+    1000 pixels of every 4th row."""
+    red = blue = n = 0
     for i in range(0, len(rgb) - 2, 21):
         r, g, b = rgb[i], rgb[i + 1], rgb[i + 2]
         n += 1
         red += r > 90 and r > 2 * g and r > 2 * b
         blue += b > 80 and b > 1.5 * r and b > 1.2 * g
-        yellow += r > 110 and g > 80 and b < 0.6 * g
-    return red / n, blue / n, yellow / n
+    runs = pixels = 0
+    for row in range(0, len(rgb) // (3 * width), 4):
+        line = rgb[row * width * 3:(row + 1) * width * 3]
+        previous = False
+        for x in range(width):
+            r, g, b = line[3 * x], line[3 * x + 1], line[3 * x + 2]
+            autumn = r > g + 10 and r > b + 40
+            runs += autumn and not previous
+            previous = autumn
+        pixels += width
+    return red / n, blue / n, 1000 * runs / max(pixels, 1)
 
 
 def main():
@@ -118,9 +129,9 @@ def main():
             if game.poll() is not None:
                 raise SystemExit(f"the game exited ({game.returncode}); see {log.name}")
             width, height, rgb = read_xwd(os.path.join(fb, "Xvfb_screen0"))
-            red, blue, yellow = shares(rgb)
-            print(f"{time.time() - start:5.0f} s: red {red:.4f}, blue {blue:.4f}, yellow {yellow:.4f}")
-            if red > 0.002 and blue > 0.002 and yellow > 0.0005:
+            red, blue, specks = shares(rgb, width)
+            print(f"{time.time() - start:5.0f} s: red {red:.4f}, blue {blue:.4f}, leaf specks {specks:.2f}")
+            if red > 0.002 and blue > 0.002 and specks > 0.3:
                 seen = seen or time.time()
                 # Ten seconds more: every pipeline in, the leaves falling.
                 if time.time() - seen > 10:

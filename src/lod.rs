@@ -223,7 +223,8 @@ impl LodView {
             return Self { half_angle: PI };
         }
         let tan_y = (0.5 * fov_y).tan();
-        let half_diagonal = (tan_y * (1.0 + aspect_ratio * aspect_ratio).sqrt()).atan();
+        // hypot, not sqrt(1 + a²): a huge aspect ratio must not overflow to ∞ (and 0 × ∞ to NaN).
+        let half_diagonal = (tan_y * 1.0f32.hypot(aspect_ratio)).atan();
         Self {
             half_angle: half_diagonal + Self::MARGIN,
         }
@@ -318,6 +319,20 @@ pub(crate) fn focus(foci: &Foci) -> Option<Focus> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Any field of view and aspect ratio gives a cone in (0, π], never NaN (a tiny field of
+    /// view on a huge aspect ratio overflowed to 0 × ∞).
+    #[test]
+    fn extreme_views_give_a_cone() {
+        let values = [1e-45, 1e-6, 1.0, 3.0, 1e30, f32::MAX, 0.0, -1.0, f32::NAN];
+        for (fov, aspect) in values.iter().flat_map(|&f| values.map(|a| (f, a))) {
+            let half = LodView::from_fov(fov, aspect).half_angle;
+            assert!(
+                half > 0.0 && half <= PI,
+                "fov {fov}, aspect {aspect}: {half}"
+            );
+        }
+    }
 
     #[test]
     fn tiers_by_distance() {

@@ -29,6 +29,7 @@ pub(crate) const AUTUMN: [Color; 5] = [
 const SINGLE_POINTS: usize = 72;
 
 /// Outline points of each leaf of a cloud: enough for the maple's five lobes at a distance.
+#[cfg_attr(not(feature = "render"), allow(dead_code))]
 pub(crate) const CLOUD_POINTS: usize = 14;
 
 impl FallPreset {

@@ -54,6 +54,7 @@ pub use gizmos::FallGizmos;
 #[cfg(feature = "gizmos")]
 pub(crate) use gizmos::FallGizmosPlugin;
 pub use lod::FallLod;
+#[cfg(feature = "render")]
 pub(crate) use look::{CLOUD_POINTS, mix, outline};
 pub use markov::{MarkovChain, MarkovError};
 pub use model::FallModel;

@@ -169,11 +169,38 @@ pub(crate) const STABLE_RATE_STEP: f64 = 1.0;
 /// Most substeps [`Self::step`] takes before it switches to [`Integrator::SemiImplicit`].
 pub(crate) const MAX_SUBSTEPS: u32 = 256;
 
+/// Largest magnitude of a parameter [`step`] uses (1/s, 1/m, 1/m², m/s²): a million times any
+/// plate's; beyond it the products of eq. 4 could overflow to NaN.
+pub(crate) const MAX_PARAMETER: f64 = 1.0e6;
+
+/// `params` with every value held to ±[`MAX_PARAMETER`] (NaN: 0).
+fn bounded(params: &TanabeKaneko) -> TanabeKaneko {
+    let b = |v: f64| {
+        if v.is_nan() {
+            0.0
+        } else {
+            v.clamp(-MAX_PARAMETER, MAX_PARAMETER)
+        }
+    };
+    TanabeKaneko {
+        a_perp: b(params.a_perp),
+        a_par: b(params.a_par),
+        lift: b(params.lift),
+        torque: b(params.torque),
+        gravity: b(params.gravity),
+    }
+}
+
 /// Advances `state` by `dt` with `method` in substeps sized so that h × stiffness ≤
 /// [`STABLE_RATE_STEP`] at the state each substep starts from (the speed, and so the lift and
 /// torque rates, change within a step). After [`TanabeKaneko::MAX_SUBSTEPS`](crate::freefall::ode::TanabeKaneko::MAX_SUBSTEPS) the rest of the step is taken in
 /// one [`Integrator::SemiImplicit`] substep, which is stable for any damping. Non-finite `dt` or
-/// `dt ≤ 0` leaves the state unchanged.
+/// `dt ≤ 0` leaves the state unchanged; a longer `dt` than [`FallRelease::MAX_STEP`] is taken
+/// as that (as [`FallPath::advance`] does), and parameters are held to ±1e6, so hostile input
+/// never gives NaN.
+///
+/// [`FallRelease::MAX_STEP`]: super::FallRelease::MAX_STEP
+/// [`FallPath::advance`]: super::FallPath::advance
 ///
 /// Every substep then passes [`speed_limit`]: the lift switches sign where sin β crosses zero,
 /// and explicit stages that straddle the switch add energy the ODE cannot (its lift is
@@ -188,8 +215,9 @@ pub(crate) fn step(
     if !(dt.is_finite() && dt > 0.0) {
         return state;
     }
+    let params = &bounded(params);
     let mut s = state;
-    let mut remaining = dt;
+    let mut remaining = dt.min(f64::from(super::release::MAX_STEP));
     for i in 0..=MAX_SUBSTEPS {
         let rate = params.stiffness(s.speed()).max(1e-12);
         let (h, method) = if i < MAX_SUBSTEPS {

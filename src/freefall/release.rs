@@ -72,17 +72,7 @@ impl FallRelease {
                 crate::guard::POSITION_REASON,
             ));
         }
-        // −∞ is "no ground": the fall never ends.
-        if self.ground.is_nan()
-            || self.ground > crate::guard::MAX_COORDINATE
-            || (self.ground.is_finite() && self.ground < -crate::guard::MAX_COORDINATE)
-        {
-            return Err(invalid(
-                "release.ground",
-                self.ground,
-                crate::guard::GROUND_REASON,
-            ));
-        }
+        check_ground(self.ground, true)?;
         if let Some(q) = self.rotation
             && crate::guard::unit_quat(q).is_none()
         {
@@ -120,4 +110,23 @@ impl FallRelease {
 
     /// Longest step [`FallPath::advance`](super::path::FallPath::advance) takes, s; a longer one is cut to it.
     pub const MAX_STEP: f32 = MAX_STEP;
+}
+
+/// The one check of a ground height, a single object's and a cloud's (`release.ground`): within
+/// ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), or −∞ (no ground: the fall never ends)
+/// where `endless` allows it.
+pub(crate) fn check_ground(ground: f32, endless: bool) -> Result<(), FreeFallError> {
+    let within = ground.abs() <= crate::guard::MAX_COORDINATE;
+    if within || (endless && ground == f32::NEG_INFINITY) {
+        return Ok(());
+    }
+    Err(FreeFallError::Invalid(InvalidValue {
+        field: "release.ground",
+        value: ground,
+        reason: if endless {
+            crate::guard::GROUND_REASON
+        } else {
+            crate::guard::POSITION_REASON
+        },
+    }))
 }

@@ -199,7 +199,8 @@ impl GpuWindParams {
                 } => (
                     4,
                     Vec3::ZERO,
-                    Vec4::new(peak_speed, front_speed, radius, 0.0),
+                    // Never inward, as on the CPU.
+                    Vec4::new(peak_speed.max(0.0), front_speed, radius, 0.0),
                 ),
                 SourceShape::Gust {
                     strength,
@@ -221,7 +222,11 @@ impl GpuWindParams {
                 vector,
                 reach_squared: s.reach2,
                 shape,
-                strength: s.strength,
+                strength: if kind == 4 {
+                    s.strength.max(0.0)
+                } else {
+                    s.strength
+                },
                 age: age as f32,
                 pulse: pulse(s.pulse, age),
             };

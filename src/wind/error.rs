@@ -1,12 +1,13 @@
 //! [`WindError`]: a bad wind setting, naming its field.
 
+use bevy::reflect::Reflect;
 use thiserror::Error;
 
 use crate::error::InvalidValue;
 use crate::spectrum::MAX_NODES;
 
 /// A [`WindConfig`](super::config::WindConfig) field that is out of range. [`WindError::field`] names it.
-#[derive(Clone, Debug, Error, PartialEq)]
+#[derive(Clone, Debug, Error, PartialEq, Reflect)]
 pub enum WindError {
     /// A number outside its valid range.
     #[error(transparent)]

@@ -44,4 +44,4 @@ pub use rebuild::{WindRebuild, WindRebuilt};
 pub use settings::WindSettings;
 pub use shelter::{ShelterKind, WindShelter};
 pub use snapshot::WindSnapshot;
-pub use source::{SourceShape, WindSource};
+pub use source::{SourceShape, WindSource, WindSourceInvalid};

@@ -2,7 +2,8 @@
 //! [`WindShelter`](super::shelter::WindShelter)) stands for one fixed step: its origin and rotation taken
 //! from its entity's world transform, its scale ignored. Sources and shelters share it.
 
-use bevy::math::{Affine3A, Quat, Vec3A};
+use crate::guard::MAX_COORDINATE;
+use bevy::math::{Quat, Vec3A};
 
 /// An origin and a rotation in the world.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -16,13 +17,12 @@ pub(crate) struct Placement {
 }
 
 impl Placement {
-    /// The place `affine` describes, or `None` when it describes none (a non-finite origin or no
-    /// rotation).
-    pub(crate) fn from_affine(affine: &Affine3A) -> Option<Self> {
-        let (_, rotation, origin) = affine.to_scale_rotation_translation();
+    /// At `origin`, turned by `rotation` (normalised), or `None` when either is not finite (or
+    /// the rotation has no length) or the origin lies beyond ±[`MAX_COORDINATE`].
+    pub(crate) fn new(origin: Vec3A, rotation: Quat) -> Option<Self> {
         let rotation = crate::guard::unit_quat(rotation)?;
-        origin.is_finite().then(|| Self {
-            origin: origin.into(),
+        (origin.is_finite() && origin.abs().max_element() <= MAX_COORDINATE).then(|| Self {
+            origin,
             to_world: rotation,
             to_local: rotation.inverse(),
         })
@@ -36,7 +36,12 @@ pub(crate) fn fade(s: f32) -> f32 {
     t * t
 }
 
-/// A size as given, or 0 for a negative or NaN one (which then places nothing).
+/// A size as given, held to [`MAX_COORDINATE`] (nothing reaches farther than the world goes),
+/// or 0 for a negative or NaN one (which then places nothing).
 pub(crate) fn size(v: f32) -> f32 {
-    if v.is_finite() { v.max(0.0) } else { 0.0 }
+    if v.is_finite() {
+        v.clamp(0.0, MAX_COORDINATE)
+    } else {
+        0.0
+    }
 }

@@ -4,7 +4,10 @@
 use super::placement::{Placement, fade, size};
 use bevy::ecs::component::Component;
 use bevy::ecs::reflect::ReflectComponent;
-use bevy::math::{Affine3A, Quat, Vec3, Vec3A};
+use bevy::math::{Quat, Vec3, Vec3A};
+
+use super::error::WindError;
+use crate::error::InvalidValue;
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::Transform;
@@ -80,6 +83,40 @@ impl WindShelter {
         }
     }
 
+    /// Checks the numbers a plugin would place: half extents finite and ≥ 0, and for a wall
+    /// `lee_heights` finite and ≥ 0 and `depth` in [0, 1]. What fails here shelters nothing and
+    /// the entity gets a [`WindSourceInvalid`](super::source::WindSourceInvalid) naming the field.
+    ///
+    /// # Errors
+    /// The first field that fails, named (`half_extents`, `kind.lee_heights`, `kind.depth`).
+    pub fn validate(&self) -> Result<(), WindError> {
+        let invalid = |field, value, reason| {
+            Err(WindError::Invalid(InvalidValue {
+                field,
+                value,
+                reason,
+            }))
+        };
+        let h = self.half_extents;
+        if !(h.is_finite() && h.min_element() >= 0.0) {
+            let worst = if h.is_finite() {
+                h.min_element()
+            } else {
+                f32::NAN
+            };
+            return invalid("half_extents", worst, "must be finite and ≥ 0");
+        }
+        if let ShelterKind::Wall { lee_heights, depth } = self.kind {
+            if !(lee_heights.is_finite() && lee_heights >= 0.0) {
+                return invalid("kind.lee_heights", lee_heights, "must be finite and ≥ 0");
+            }
+            if !(0.0..=1.0).contains(&depth) {
+                return invalid("kind.depth", depth, "must be in [0, 1]");
+            }
+        }
+        Ok(())
+    }
+
     /// A room of `half_extents` with no global wind inside.
     pub fn indoor(half_extents: Vec3) -> Self {
         Self {
@@ -103,11 +140,11 @@ pub(crate) struct PlacedShelter {
 }
 
 impl PlacedShelter {
-    /// `shelter` at the position and rotation of `affine`; `None` if it shelters nothing.
-    pub(crate) fn new(shelter: &WindShelter, affine: &Affine3A) -> Option<Self> {
-        let place = Placement::from_affine(affine)?;
+    /// `shelter` at `place`; `None` if it shelters nothing (a zero size, or a number that is not
+    /// finite: see [`WindShelter::validate`]).
+    pub(crate) fn new(shelter: &WindShelter, place: &Placement) -> Option<Self> {
         let half = shelter.half_extents.map(size);
-        if half.min_element() <= 0.0 {
+        if half.min_element() <= 0.0 || shelter.validate().is_err() {
             return None;
         }
         let reach = match shelter.kind {

@@ -97,13 +97,8 @@ impl WindField {
         field.paused = snapshot.paused;
         field.drift_base = snapshot.drift;
         field.drift_since = snapshot.drift_since;
-        if let Some(WindEasing {
-            speed,
-            direction,
-            time_constant,
-        }) = snapshot.easing
-        {
-            field.resume_easing(speed, direction, time_constant)?;
+        if let Some(easing) = &snapshot.easing {
+            field.resume_easing(easing)?;
         }
         Ok(field)
     }

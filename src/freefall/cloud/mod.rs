@@ -147,7 +147,7 @@ impl LeafCloud {
     /// What [`FallingObject::regime`] rejects, a count above [`LeafCloud::MAX_LEAVES`](crate::freefall::LeafCloud::MAX_LEAVES), a region
     /// whose corners are not finite, beyond ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE) or not
     /// ordered, negative or NaN LOD distances (far < near), a `recycle_after` not finite and
-    /// ≥ 0, or a ground that is not finite.
+    /// ≥ 0, or a ground that is not finite and within ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE).
     pub fn leaves(&self, model: &FallModel, ground: f32) -> Result<CloudLeaves, FreeFallError> {
         let invalid = |field, value, reason| {
             FreeFallError::Invalid(InvalidValue {
@@ -194,9 +194,8 @@ impl LeafCloud {
         {
             return Err(invalid("recycle_after", t, "must be finite and ≥ 0"));
         }
-        if !ground.is_finite() {
-            return Err(invalid("release.ground", ground, "must be finite"));
-        }
+        // The ground single objects accept, but finite: a cloud's leaves always land.
+        super::release::check_ground(ground, false)?;
         let chain = match &self.object.markov {
             Some(chain) => std::sync::Arc::new(chain.bounded(regime.main)),
             None => model.bounded_shared(regime.main),

@@ -78,37 +78,36 @@ impl WindField {
         target.reference_speed = speed;
         target.direction = direction;
         validate_extra(&target)?;
-        if !(time_constant.is_finite() && time_constant >= 0.0) {
-            return Err(WindError::Invalid(InvalidValue {
-                field: "time_constant",
-                value: time_constant,
-                reason: "must be finite and ≥ 0",
-            }));
-        }
+        check_time_constant(time_constant)?;
         let direction = crate::guard::unit_vec2(direction).unwrap_or(Vec2::X);
-        self.ease = Some(WindEasing {
+        let now = Vec2::new(self.along.x, self.along.z);
+        self.ease = Some(WindEasing::new(
             speed,
             direction,
             time_constant,
-        });
+            self.config.reference_speed,
+            now,
+        ));
         if time_constant == 0.0 {
             self.ease_step(0.0);
         }
         Ok(())
     }
 
-    /// Restores an easing (from a [`WindSnapshot`](super::WindSnapshot)) without stepping it.
-    pub(in crate::wind) fn resume_easing(
-        &mut self,
-        speed: f32,
-        direction: Vec2,
-        time_constant: f32,
-    ) -> Result<(), WindError> {
+    /// Restores an easing (from a [`WindSnapshot`](super::WindSnapshot)) without stepping it:
+    /// its target as [`Self::ease_to`] checks it, its τ as well (a NaN or negative τ is refused,
+    /// named), and how far it had come (a snapshot without that starts it from now).
+    pub(in crate::wind) fn resume_easing(&mut self, saved: &WindEasing) -> Result<(), WindError> {
         let (speed_now, direction_now) = (self.config.reference_speed, self.config.direction);
-        self.ease_to(speed, direction, time_constant.max(f32::MIN_POSITIVE))?;
-        // ease_to with τ > 0 changes nothing yet; keep the exact τ.
+        check_time_constant(saved.time_constant)?;
+        self.ease_to(
+            saved.speed,
+            saved.direction,
+            saved.time_constant.max(f32::MIN_POSITIVE),
+        )?;
+        // ease_to with τ > 0 changes nothing yet; keep the exact τ and the progress.
         if let Some(ease) = self.ease.as_mut() {
-            ease.time_constant = time_constant;
+            ease.resume_from(saved);
         }
         debug_assert_eq!(
             (speed_now, direction_now),
@@ -123,11 +122,10 @@ impl WindField {
     }
 
     fn ease_step(&mut self, dt: f32) {
-        let Some(ease) = self.ease else {
+        let Some(ease) = self.ease.as_mut() else {
             return;
         };
-        let now = Vec2::new(self.along.x, self.along.z);
-        let (speed, direction, arrived) = ease.step(self.config.reference_speed, now, dt);
+        let (speed, direction, arrived) = ease.step(dt);
         self.rebase_drift();
         self.config.reference_speed = speed;
         self.config.direction = direction;
@@ -178,5 +176,18 @@ impl WindField {
         self.step_start = old.step_start;
         self.drift_base = old.drift_base;
         self.drift_since = old.drift_since;
+    }
+}
+
+/// An easing's τ: finite and ≥ 0.
+fn check_time_constant(time_constant: f32) -> Result<(), WindError> {
+    if time_constant.is_finite() && time_constant >= 0.0 {
+        Ok(())
+    } else {
+        Err(WindError::Invalid(InvalidValue {
+            field: "time_constant",
+            value: time_constant,
+            reason: "must be finite and ≥ 0",
+        }))
     }
 }

@@ -16,6 +16,7 @@ use std::f32::consts::FRAC_PI_2;
 use super::error::WindError;
 use super::placement::size;
 use super::pulse::Pulse;
+use crate::guard::MAX_COORDINATE;
 
 /// What a [`WindSource`] blows, in metres and m/s.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -75,9 +76,12 @@ pub enum SourceShape {
 /// entity's position and rotation place it (its global transform, so sources move and may be
 /// parented); its scale is ignored: sizes are in metres.
 ///
-/// The plain constructors never fail: a non-finite number becomes 0, a negative size 0 and an
-/// angle is clamped to its range, so a bad argument gives a source that blows nothing rather than
-/// NaN. The `try_` constructors return a [`WindError`] naming the argument instead.
+/// The plain constructors never fail: a non-finite number becomes 0, a negative size 0, a size
+/// beyond [`MAX_COORDINATE`] is held there and an angle is clamped to its range, so a bad
+/// argument gives a source that blows nothing rather than NaN. The `try_` constructors return a
+/// [`WindError`] naming the argument instead. A source whose public fields are set by hand to a
+/// number that is not finite blows nothing and gets a [`WindSourceInvalid`]; one source never
+/// cancels another (each adds at most ±1e6 m/s per axis), and a blast never blows inward.
 ///
 /// A blast or a gust is one-shot: it starts when it is added (its age counts from the start of
 /// the next fixed step, so after n steps it is n steps old) and is inert once
@@ -127,6 +131,12 @@ fn finite(v: f32) -> f32 {
     if v.is_finite() { v } else { 0.0 }
 }
 
+/// `Ok` for a size in [0, `MAX_COORDINATE`], otherwise an error naming `field`.
+fn check_size(field: &'static str, value: f32) -> Result<(), WindError> {
+    let ok = (0.0..=MAX_COORDINATE).contains(&value);
+    check(field, value, ok, "must be finite, ≥ 0 and ≤ MAX_COORDINATE")
+}
+
 /// `Ok` for a finite `value` that is `ok`, otherwise an error naming `field`.
 fn check(field: &'static str, value: f32, ok: bool, reason: &'static str) -> Result<(), WindError> {
     super::error::check(ok && value.is_finite(), field, value, reason)
@@ -163,9 +173,10 @@ impl WindSource {
         })
     }
 
-    /// [`Self::sphere`], refusing a negative or non-finite `radius` or a non-finite `velocity`.
+    /// [`Self::sphere`], refusing a `radius` that is negative, not finite or above
+    /// [`MAX_COORDINATE`], or a non-finite `velocity`.
     pub fn try_sphere(radius: f32, velocity: Vec3) -> Result<Self, WindError> {
-        check("radius", radius, radius >= 0.0, "must be finite and ≥ 0")?;
+        check_size("radius", radius)?;
         let largest = velocity.abs().max_element();
         check("velocity", largest, true, "must be finite")?;
         Ok(Self::sphere(radius, velocity))
@@ -183,10 +194,11 @@ impl WindSource {
         })
     }
 
-    /// [`Self::fan`], refusing a negative or non-finite `range`, a `half_angle` outside
+    /// [`Self::fan`], refusing a `range` that is negative, not finite or above
+    /// [`MAX_COORDINATE`], a `half_angle` outside
     /// [0, π/2] or a non-finite `speed`.
     pub fn try_fan(range: f32, half_angle: f32, speed: f32) -> Result<Self, WindError> {
-        check("range", range, range >= 0.0, "must be finite and ≥ 0")?;
+        check_size("range", range)?;
         check(
             "half_angle",
             half_angle,
@@ -210,10 +222,10 @@ impl WindSource {
         })
     }
 
-    /// [`Self::vortex`], refusing a negative or non-finite `radius` or a non-finite
-    /// `peak_speed`.
+    /// [`Self::vortex`], refusing a `radius` that is negative, not finite or above
+    /// [`MAX_COORDINATE`], or a non-finite `peak_speed`.
     pub fn try_vortex(radius: f32, peak_speed: f32) -> Result<Self, WindError> {
-        check("radius", radius, radius >= 0.0, "must be finite and ≥ 0")?;
+        check_size("radius", radius)?;
         check("peak_speed", peak_speed, true, "must be finite")?;
         Ok(Self::vortex(radius, peak_speed))
     }
@@ -255,7 +267,8 @@ impl WindSource {
         })
     }
 
-    /// [`Self::gust`], refusing a non-finite `strength` or negative or non-finite sizes.
+    /// [`Self::gust`], refusing a non-finite `strength`, a negative or non-finite
+    /// `front_speed`, or sizes that are negative, not finite or above [`MAX_COORDINATE`].
     pub fn try_gust(
         strength: f32,
         front_speed: f32,
@@ -265,17 +278,18 @@ impl WindSource {
         let reason = "must be finite and ≥ 0";
         check("strength", strength, true, "must be finite")?;
         check("front_speed", front_speed, front_speed >= 0.0, reason)?;
-        check("width", width, width >= 0.0, reason)?;
-        check("range", range, range >= 0.0, reason)?;
+        check_size("width", width)?;
+        check_size("range", range)?;
         Ok(Self::gust(strength, front_speed, width, range))
     }
 
-    /// [`Self::blast`], refusing negative or non-finite arguments.
+    /// [`Self::blast`], refusing negative or non-finite arguments and a `radius` above
+    /// [`MAX_COORDINATE`].
     pub fn try_blast(peak_speed: f32, front_speed: f32, radius: f32) -> Result<Self, WindError> {
         let reason = "must be finite and ≥ 0";
         check("peak_speed", peak_speed, peak_speed >= 0.0, reason)?;
         check("front_speed", front_speed, front_speed >= 0.0, reason)?;
-        check("radius", radius, radius >= 0.0, reason)?;
+        check_size("radius", radius)?;
         Ok(Self::blast(peak_speed, front_speed, radius))
     }
 
@@ -314,5 +328,7 @@ impl WindSource {
     }
 }
 
+mod check;
 mod placed;
+pub use check::WindSourceInvalid;
 pub(crate) use placed::PlacedSource;

@@ -1,7 +1,7 @@
 //! A [`WindSource`] placed in the world for one fixed step: what the field samples, the
 //! velocity of each shape (sphere, fan, vortex, blast, gust).
 
-use bevy::math::{Affine3A, Quat, Vec3, Vec3A};
+use bevy::math::{Quat, Vec3, Vec3A};
 
 use super::super::placement::{Placement, fade};
 use super::super::pulse::Pulse;
@@ -13,6 +13,24 @@ fn plateau(x: f32, inner: f32, outer: f32) -> f32 {
         1.0
     } else {
         fade((x - inner) / (outer - inner).max(f32::MIN_POSITIVE))
+    }
+}
+
+/// The most any one source adds, m/s per axis: far beyond any wind, and small enough that the
+/// sum of any number of sources a game can hold stays finite.
+pub(crate) const MAX_SOURCE_SPEED: f32 = 1.0e6;
+
+/// The one guard on what a source adds: a non-finite velocity (a NaN or infinite field set by
+/// hand) adds nothing, a huge one is held to ±[`MAX_SOURCE_SPEED`] per axis, so one bad source
+/// never cancels the others at a point (the sum stays finite).
+fn guarded(v: Vec3) -> Vec3 {
+    if v.is_finite() {
+        v.clamp(
+            Vec3::splat(-MAX_SOURCE_SPEED),
+            Vec3::splat(MAX_SOURCE_SPEED),
+        )
+    } else {
+        Vec3::ZERO
     }
 }
 
@@ -34,13 +52,14 @@ pub(crate) struct PlacedSource {
 }
 
 impl PlacedSource {
-    /// `source` at the position and rotation of `affine`, started at wind time `start`.
-    /// `None` for a source that blows nothing (zero strength or reach, a non-finite place).
-    pub(crate) fn new(source: &WindSource, affine: &Affine3A, start: f64) -> Option<Self> {
-        let place = Placement::from_affine(affine)?;
+    /// `source` at `place`, started at wind time `start`.
+    /// `None` for a source that blows nothing (zero strength or reach) or
+    /// whose shape holds a number that is not finite (set by hand in a public field): it adds
+    /// nothing, on the CPU and the GPU, and the others still blow.
+    pub(crate) fn new(source: &WindSource, place: &Placement, start: f64) -> Option<Self> {
         let reach = source.reach();
         let strength = finite(source.strength);
-        if !(reach > 0.0 && strength != 0.0) {
+        if !(reach > 0.0 && reach.is_finite() && strength != 0.0 && source.shape.is_finite()) {
             return None;
         }
         Some(Self {
@@ -63,12 +82,16 @@ impl PlacedSource {
         if r2.is_nan() || r2 >= self.reach2 {
             return Vec3::ZERO;
         }
-        let strength = if self.pulse.is_active() {
+        let mut strength = if self.pulse.is_active() {
             self.strength * self.pulse.factor(time - self.start)
         } else {
             self.strength
         };
-        self.inside(Vec3::from(d), r2, time) * strength
+        if matches!(self.shape, SourceShape::Blast { .. }) {
+            // A blast blows outward, never inward, whatever its strength's sign.
+            strength = strength.max(0.0);
+        }
+        guarded(self.inside(Vec3::from(d), r2, time) * strength)
     }
 
     fn inside(&self, d: Vec3, r2: f32, time: f64) -> Vec3 {
@@ -133,7 +156,7 @@ impl PlacedSource {
                     return Vec3::ZERO;
                 }
                 let s = behind / width.max(f32::MIN_POSITIVE);
-                d / r * (peak_speed * fade(s) * plateau(r, 0.5 * radius, radius))
+                d / r * (peak_speed.max(0.0) * fade(s) * plateau(r, 0.5 * radius, radius))
             }
             SourceShape::Gust {
                 strength,
@@ -165,7 +188,8 @@ mod tests {
     use super::*;
 
     fn placed(source: WindSource) -> PlacedSource {
-        PlacedSource::new(&source, &Affine3A::IDENTITY, 0.0).unwrap()
+        let here = Placement::new(Vec3A::ZERO, Quat::IDENTITY).unwrap();
+        PlacedSource::new(&source, &here, 0.0).unwrap()
     }
 
     #[test]

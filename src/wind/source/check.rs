@@ -1,0 +1,141 @@
+//! What a plugin checks of a [`WindSource`] before it places it (every number finite, sizes
+//! within the world), and the marker of one that fails, [`WindSourceInvalid`].
+
+use bevy::ecs::component::Component;
+use bevy::ecs::reflect::ReflectComponent;
+use bevy::reflect::Reflect;
+
+use super::super::error::WindError;
+use super::{SourceShape, WindSource, check};
+use crate::guard::MAX_COORDINATE;
+
+impl WindSource {
+    /// Checks what a plugin would place: every number of the shape finite (sizes also ≥ 0), the
+    /// strength finite. What fails here blows nothing, and the entity gets a
+    /// [`WindSourceInvalid`] naming the field.
+    ///
+    /// # Errors
+    /// The first field that fails, named (`shape.radius`, `shape.velocity`, `shape.speed`,
+    /// `shape.peak_speed`, `shape.updraft`, `shape.strength`, `strength`, …).
+    pub fn validate(&self) -> Result<(), WindError> {
+        let finite = |field, v: f32| check(field, v, true, "must be finite");
+        let sized = |field, v: f32| {
+            let ok = (0.0..=MAX_COORDINATE).contains(&v);
+            check(field, v, ok, "must be finite, ≥ 0 and ≤ MAX_COORDINATE")
+        };
+        match self.shape {
+            SourceShape::Sphere { radius, velocity } => {
+                sized("shape.radius", radius)?;
+                let worst = velocity.abs().max_element();
+                finite(
+                    "shape.velocity",
+                    if velocity.is_finite() {
+                        worst
+                    } else {
+                        f32::NAN
+                    },
+                )?;
+            }
+            SourceShape::Fan {
+                range,
+                half_angle,
+                speed,
+            } => {
+                sized("shape.range", range)?;
+                finite("shape.half_angle", half_angle)?;
+                finite("shape.speed", speed)?;
+            }
+            SourceShape::Vortex {
+                radius,
+                peak_speed,
+                updraft,
+            } => {
+                sized("shape.radius", radius)?;
+                finite("shape.peak_speed", peak_speed)?;
+                finite("shape.updraft", updraft)?;
+            }
+            SourceShape::Blast {
+                peak_speed,
+                front_speed,
+                radius,
+            } => {
+                finite("shape.peak_speed", peak_speed)?;
+                sized("shape.front_speed", front_speed)?;
+                sized("shape.radius", radius)?;
+            }
+            SourceShape::Gust {
+                strength,
+                front_speed,
+                width,
+                range,
+            } => {
+                finite("shape.strength", strength)?;
+                sized("shape.front_speed", front_speed)?;
+                sized("shape.width", width)?;
+                sized("shape.range", range)?;
+            }
+        }
+        finite("strength", self.strength)
+    }
+}
+
+impl SourceShape {
+    /// Whether every number of the shape is finite.
+    pub(crate) fn is_finite(&self) -> bool {
+        match *self {
+            Self::Sphere { radius, velocity } => radius.is_finite() && velocity.is_finite(),
+            Self::Fan {
+                range,
+                half_angle,
+                speed,
+            } => [range, half_angle, speed].iter().all(|v| v.is_finite()),
+            Self::Vortex {
+                radius,
+                peak_speed,
+                updraft,
+            } => [radius, peak_speed, updraft].iter().all(|v| v.is_finite()),
+            Self::Blast {
+                peak_speed,
+                front_speed,
+                radius,
+            } => [peak_speed, front_speed, radius]
+                .iter()
+                .all(|v| v.is_finite()),
+            Self::Gust {
+                strength,
+                front_speed,
+                width,
+                range,
+            } => [strength, front_speed, width, range]
+                .iter()
+                .all(|v| v.is_finite()),
+        }
+    }
+}
+
+/// Why a [`WindSource`] (or a [`WindShelter`](crate::wind::WindShelter)) adds nothing: a number
+/// of its shape that is not finite (a public field set by hand: the constructors never give
+/// one), or, with field `transform`, a transform that places it nowhere (not finite, or beyond
+/// ±[`MAX_COORDINATE`]). Inserted when the problem appears (logged once with `warn!`), removed
+/// once it is gone; the other sources and shelters blow as before.
+///
+/// # Example
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+/// use bevy_windfall::wind::{SourceShape, WindSourceInvalid};
+///
+/// let mut app = App::new();
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// let shape = SourceShape::Fan { range: 5.0, half_angle: 0.5, speed: f32::NAN };
+/// let fan = app.world_mut().spawn(WindSource { shape, ..default() }).id();
+/// app.update();
+/// let invalid = app.world().get::<WindSourceInvalid>(fan).unwrap();
+/// assert_eq!(invalid.0.field(), "shape.speed");
+/// ```
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Debug)]
+pub struct WindSourceInvalid(pub WindError);
+
+crate::lifecycle::invalid_marker!(WindSourceInvalid, WindError);

@@ -1,0 +1,103 @@
+//! Hostile input, third round, on falls: one ground check shared by single objects and clouds,
+//! the path API refusing what the plugin refuses, and eq. 4's integrator finite for any step
+//! and any parameters.
+
+use bevy::math::Vec3;
+use bevy_windfall::freefall::ode::{Integrator, OdeState, TanabeKaneko};
+use bevy_windfall::freefall::{FallModel, FallRelease, FallingObject, LeafCloud};
+
+#[test]
+fn a_cloud_refuses_the_ground_a_single_object_refuses() {
+    let model = FallModel::default();
+    let cloud = LeafCloud {
+        count: 10,
+        ..Default::default()
+    };
+    let object = FallingObject::default();
+    for ground in [2e7, -2e7, 1e30, f32::MAX, f32::INFINITY, f32::NAN] {
+        let refused = cloud.leaves(&model, ground).unwrap_err();
+        assert_eq!(refused.field(), "release.ground", "cloud on {ground}");
+        let release = FallRelease::at(Vec3::new(0.0, 5.0, 0.0), ground);
+        let single = object.path(&model, release).unwrap_err();
+        assert_eq!(
+            single.field(),
+            "release.ground",
+            "single object on {ground}"
+        );
+    }
+    // The valid range, to its edges.
+    for ground in [-1e7, -3.0, 0.0, 1e7] {
+        let leaves = cloud
+            .leaves(&model, ground)
+            .expect("a ground within the world");
+        assert_eq!(leaves.len(), 10);
+    }
+}
+
+#[test]
+fn the_path_api_refuses_the_releases_the_plugin_refuses() {
+    let model = FallModel::default();
+    let object = FallingObject::default();
+    for position in [
+        Vec3::new(1e38, 2.0, -1e38),
+        Vec3::new(0.0, 2e7, 0.0),
+        Vec3::new(f32::NAN, 0.0, 0.0),
+    ] {
+        let refused = object
+            .path(&model, FallRelease::at(position, 0.0))
+            .unwrap_err();
+        assert_eq!(refused.field(), "release.position", "{position}");
+    }
+}
+
+#[test]
+fn eq_4_stays_finite_for_any_step_and_parameters() {
+    let values = [
+        1e300,
+        -1e300,
+        1e6,
+        -1e6,
+        4.1,
+        0.0,
+        -0.5,
+        f64::NAN,
+        f64::INFINITY,
+    ];
+    let methods = [
+        Integrator::Euler,
+        Integrator::Midpoint,
+        Integrator::Rk4,
+        Integrator::SemiImplicit,
+    ];
+    let start = OdeState {
+        v: -1.0,
+        theta: 0.3,
+        ..Default::default()
+    };
+    for (k, &value) in values.iter().enumerate() {
+        // Each parameter in turn, and all of them at once.
+        for which in 0..6 {
+            let mut p = TanabeKaneko::FLUTTER;
+            let slots = [
+                &mut p.a_perp,
+                &mut p.a_par,
+                &mut p.lift,
+                &mut p.torque,
+                &mut p.gravity,
+            ];
+            match which {
+                5 => slots.into_iter().for_each(|s| *s = value),
+                i => *slots.into_iter().nth(i).unwrap() = value,
+            }
+            for dt in [1e300, 1e30, 60.0, 1.0 / 60.0, 1e-300] {
+                for method in methods {
+                    let next = p.step(start, dt, method);
+                    assert!(
+                        next.is_finite(),
+                        "value {k} in slot {which}, dt {dt}, {method:?}: {next:?}"
+                    );
+                }
+            }
+        }
+    }
+}
