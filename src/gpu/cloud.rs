@@ -104,7 +104,7 @@ pub(crate) struct LeafCloudVisual {
 
 /// Draws every [`LeafCloud`]: gives it a mesh and a [`LeafCloudMaterial`] and writes its poses
 /// each frame, after [`WindfallSystems::WriteBack`](crate::schedule::WindfallSystems::WriteBack) posed
-/// them. [`WindfallPlugins`](crate::WindfallPlugins) adds it in an app with the renderer (through
+/// them. [`WindfallPlugins`](struct@crate::WindfallPlugins) adds it in an app with the renderer (through
 /// [`WindfallRenderPlugin`](super::WindfallRenderPlugin)).
 ///
 /// The mesh holds `count` copies of the leaf's outline at the origin, each vertex tagged with its

@@ -20,7 +20,7 @@ use crate::aero::PhysicalCloth;
 use crate::cloth::Cloth;
 use crate::freefall::{FallPreset, FallingObject, Shape};
 
-/// Draws what the crate animates (feature `render`, in [`WindfallPlugins`](crate::WindfallPlugins)):
+/// Draws what the crate animates (feature `render`, in [`WindfallPlugins`](struct@crate::WindfallPlugins)):
 /// default looks for [`FallingObject`]s and cloths, [`LeafCloudRenderPlugin`] for leaf clouds and
 /// [`WindGpuPlugin`] for the wind on the GPU. In an app without Bevy's renderer (a server, a
 /// headless test) it does nothing, so add the group after `DefaultPlugins`.

@@ -51,7 +51,7 @@ use bevy::render::storage::ShaderBuffer;
 use crate::wind::WindField;
 
 /// Uploads the [`WindField`] to the GPU and registers the WGSL module `bevy_windfall::wind`.
-/// [`WindfallPlugins`](crate::WindfallPlugins) adds it (through [`WindfallRenderPlugin`]) in an
+/// [`WindfallPlugins`](struct@crate::WindfallPlugins) adds it (through [`WindfallRenderPlugin`]) in an
 /// app with the renderer; on its own, add it after `DefaultPlugins` and a
 /// [`WindPlugin`](crate::wind::WindPlugin).
 ///
