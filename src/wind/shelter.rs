@@ -140,11 +140,11 @@ pub(crate) struct PlacedShelter {
 }
 
 impl PlacedShelter {
-    /// `shelter` at `place`; `None` if it shelters nothing (a zero size, or a number that is not
-    /// finite: see [`WindShelter::validate`]).
+    /// `shelter` at `place`; `None` if it shelters nothing (a zero size). The plugin places only
+    /// shelters that pass [`WindShelter::validate`] (checked once, there).
     pub(crate) fn new(shelter: &WindShelter, place: &Placement) -> Option<Self> {
         let half = shelter.half_extents.map(size);
-        if half.min_element() <= 0.0 || shelter.validate().is_err() {
+        if half.min_element() <= 0.0 {
             return None;
         }
         let reach = match shelter.kind {

@@ -79,40 +79,6 @@ impl WindSource {
     }
 }
 
-impl SourceShape {
-    /// Whether every number of the shape is finite.
-    pub(crate) fn is_finite(&self) -> bool {
-        match *self {
-            Self::Sphere { radius, velocity } => radius.is_finite() && velocity.is_finite(),
-            Self::Fan {
-                range,
-                half_angle,
-                speed,
-            } => [range, half_angle, speed].iter().all(|v| v.is_finite()),
-            Self::Vortex {
-                radius,
-                peak_speed,
-                updraft,
-            } => [radius, peak_speed, updraft].iter().all(|v| v.is_finite()),
-            Self::Blast {
-                peak_speed,
-                front_speed,
-                radius,
-            } => [peak_speed, front_speed, radius]
-                .iter()
-                .all(|v| v.is_finite()),
-            Self::Gust {
-                strength,
-                front_speed,
-                width,
-                range,
-            } => [strength, front_speed, width, range]
-                .iter()
-                .all(|v| v.is_finite()),
-        }
-    }
-}
-
 /// Why a [`WindSource`] (or a [`WindShelter`](crate::wind::WindShelter)) adds nothing: a number
 /// of its shape that is not finite (a public field set by hand: the constructors never give
 /// one), or, with field `transform`, a transform that places it nowhere (not finite, or beyond

@@ -53,13 +53,13 @@ pub(crate) struct PlacedSource {
 
 impl PlacedSource {
     /// `source` at `place`, started at wind time `start`.
-    /// `None` for a source that blows nothing (zero strength or reach) or
-    /// whose shape holds a number that is not finite (set by hand in a public field): it adds
-    /// nothing, on the CPU and the GPU, and the others still blow.
+    /// `None` for a source that blows nothing (zero strength or reach). The plugin places only
+    /// sources that pass [`WindSource::validate`]; whatever slips through is caught by the one
+    /// guard on what a source adds.
     pub(crate) fn new(source: &WindSource, place: &Placement, start: f64) -> Option<Self> {
         let reach = source.reach();
         let strength = finite(source.strength);
-        if !(reach > 0.0 && reach.is_finite() && strength != 0.0 && source.shape.is_finite()) {
+        if !(reach > 0.0 && reach.is_finite() && strength != 0.0) {
             return None;
         }
         Some(Self {
