@@ -125,6 +125,31 @@ fn faces(c: &mut Criterion) {
             black_box(physical.positions()[0])
         })
     });
+    // The size: 24 rows × 36 columns, against the P-descriptor flag of that grid.
+    let grid = ClothGrid {
+        rows: 24,
+        columns: 36,
+        width: 1.5,
+        height: 1.0,
+    };
+    let mut procedural = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
+    group.bench_function("flag_step_36x24/procedural", |b| {
+        b.iter(|| {
+            procedural.advance(DT, params.wind_speed);
+            procedural.rebuild();
+            black_box(procedural.positions()[0])
+        })
+    });
+    let mut physical =
+        ParticleCloth::new(grid, 0.15, AeroCoefficients::default(), Pinning::PoleColumn).unwrap();
+    group.bench_function("flag_step_36x24/physical_particles", |b| {
+        b.iter(|| {
+            physical.step(DT, gravity, &|p| {
+                wind.velocity(p + Vec3::new(0.0, 5.0, 0.0))
+            });
+            black_box(physical.positions()[0])
+        })
+    });
     group.finish();
 }
 

@@ -414,14 +414,15 @@ fn physical_flag_hangs_in_still_air_and_streams_in_wind() {
     );
     let mut streaming = flag(0.2);
     let breeze = |_: Vec3| Vec3::new(8.0, 0.0, 0.0);
-    for _ in 0..240 {
+    // It flaps: the free corner's mean over the fourth second is well downwind and up.
+    let mut mean = Vec3::ZERO;
+    for step in 0..240 {
         streaming.step(1.0 / 60.0, G, &breeze);
+        if step >= 180 {
+            mean += streaming.positions()[17] / 60.0;
+        }
     }
-    let free_corner = streaming.positions()[17];
-    assert!(
-        free_corner.x > 1.2 && free_corner.y > -0.5,
-        "{free_corner:?}"
-    );
+    assert!(mean.x > 1.1 && mean.y > -0.5, "{mean:?}");
     assert!(
         streaming.max_strain() < 0.08,
         "strain {}",

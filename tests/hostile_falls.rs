@@ -101,3 +101,35 @@ fn eq_4_stays_finite_for_any_step_and_parameters() {
         }
     }
 }
+
+#[test]
+fn a_fall_let_go_high_up_moves_at_its_speed() {
+    use bevy_windfall::freefall::WindTilt;
+    // The same object let go 10 m and 1e6–9.9e6 m up (inside the world's ±1e7 m), stepped 4 s at
+    // 60 Hz with the ground far below: it comes down as far up high as low down, to within one
+    // f32 spacing of the height (where a 1/60 s step is below that spacing, it is carried over).
+    let model = FallModel::default();
+    let object = FallingObject::default();
+    let tilt = WindTilt {
+        max_angle: 0.6,
+        reference_speed: 4.0,
+    };
+    let fall = |height: f32| {
+        let release = FallRelease::at(Vec3::new(0.0, height, 0.0), height - 1000.0);
+        let mut path = object.path(&model, release).unwrap();
+        for _ in 0..240 {
+            path.advance(&model, 1.0 / 60.0, Vec3::ZERO, &tilt);
+        }
+        path.position() - Vec3::new(0.0, height, 0.0)
+    };
+    let low = fall(10.0);
+    assert!(low.y < -1.0, "the low fall came down only {low}");
+    for height in [1e6f32, 5e6, 9.9e6] {
+        let high = fall(height);
+        let spacing = f32::EPSILON * height;
+        assert!(
+            (high - low).abs().max_element() <= 2.0 * spacing,
+            "let go at {height} m: moved {high}, low down {low} (spacing {spacing} m)"
+        );
+    }
+}

@@ -240,3 +240,110 @@ fn a_field_inserted_during_a_rebuild_wins() {
     }
     assert_eq!(app.world().resource::<WindField>().config().seed, 1234);
 }
+
+/// Runs `app` until no rebuild is in flight (at most two rebuilds' steps).
+fn until_landed(app: &mut App) {
+    for _ in 0..2 * bevy_windfall::wind::WindRebuild::DEFAULT_STEPS {
+        app.update();
+        if !app
+            .world()
+            .contains_resource::<bevy_windfall::wind::WindRebuild>()
+        {
+            return;
+        }
+    }
+    panic!("the rebuild never landed");
+}
+
+#[test]
+fn a_pulse_set_while_a_rebuild_builds_survives_its_landing() {
+    // Through the settings, and on the field directly.
+    for direct in [false, true] {
+        let mut app = settings_app();
+        app.world_mut().resource_mut::<WindSettings>().beta = 2.5;
+        app.update();
+        let pulse = bevy_windfall::wind::Pulse::new(0.5, 0.25);
+        if direct {
+            let mut field = app.world_mut().resource_mut::<WindField>();
+            field.set_pulse(pulse).unwrap();
+        } else {
+            app.world_mut().resource_mut::<WindSettings>().pulse = pulse;
+        }
+        until_landed(&mut app);
+        app.update();
+        let field = app.world().resource::<WindField>();
+        assert_eq!(field.config().beta, 2.5, "direct: {direct}");
+        assert_eq!(field.config().pulse, pulse, "direct: {direct}");
+        assert_eq!(app.world().resource::<WindSettings>().pulse, pulse);
+    }
+}
+
+#[test]
+fn a_rebuild_lands_with_its_own_speed_and_direction_where_nobody_changed_them() {
+    use bevy_windfall::wind::WindRebuild;
+    let mut app = settings_app();
+    let next = WindConfig {
+        reference_speed: 7.0,
+        direction: Vec2::new(0.0, 1.0),
+        beta: 3.0,
+        ..config()
+    };
+    app.insert_resource(WindRebuild::start(next).unwrap().with_steps(4));
+    until_landed(&mut app);
+    app.update();
+    let field = app.world().resource::<WindField>();
+    assert_eq!(field.config().reference_speed, 7.0);
+    assert_eq!(field.config().direction, Vec2::new(0.0, 1.0));
+    assert_eq!(app.world().resource::<WindSettings>().reference_speed, 7.0);
+    // An edit made while it builds wins over the rebuild's own value; the rest is the rebuild's.
+    let next = WindConfig {
+        reference_speed: 3.0,
+        direction: Vec2::new(1.0, 0.0),
+        beta: 2.0,
+        ..config()
+    };
+    app.insert_resource(WindRebuild::start(next).unwrap().with_steps(4));
+    app.update();
+    app.world_mut()
+        .resource_mut::<WindField>()
+        .set_reference_speed(11.0)
+        .unwrap();
+    until_landed(&mut app);
+    let field = app.world().resource::<WindField>();
+    assert_eq!(field.config().reference_speed, 11.0);
+    assert_eq!(field.config().direction, Vec2::new(1.0, 0.0));
+    assert_eq!(field.config().beta, 2.0);
+}
+
+#[test]
+fn between_a_rebuild_and_a_field_inserted_in_the_same_frame_the_later_request_wins() {
+    use bevy_windfall::wind::WindRebuild;
+    let rebuilt = WindConfig {
+        seed: 77,
+        ..config()
+    };
+    let mine = || {
+        WindField::new(WindConfig {
+            seed: 1234,
+            ..config()
+        })
+        .unwrap()
+    };
+    // The field is made after the rebuild is requested: the field wins.
+    let mut app = settings_app();
+    let job = WindRebuild::start(rebuilt.clone()).unwrap();
+    app.insert_resource(job);
+    app.insert_resource(mine());
+    for _ in 0..2 * WindRebuild::DEFAULT_STEPS {
+        app.update();
+    }
+    assert_eq!(app.world().resource::<WindField>().config().seed, 1234);
+    // The field is made first, the rebuild requested after: the rebuild lands over it.
+    let mut app = settings_app();
+    let field = mine();
+    let job = WindRebuild::start(rebuilt).unwrap();
+    app.insert_resource(field);
+    app.insert_resource(job);
+    until_landed(&mut app);
+    assert_eq!(app.world().resource::<WindField>().config().seed, 77);
+}

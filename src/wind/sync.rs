@@ -8,7 +8,7 @@ use bevy::tasks::{block_on, futures::check_ready};
 
 use super::config::WindConfig;
 use super::field::WindField;
-use super::rebuild::{WindRebuild, WindRebuilt, start_rebuild};
+use super::rebuild::{Mean, WindRebuild, WindRebuilt, hand_over, start_rebuild};
 use super::settings::{WindSettings, needs_rebuild};
 
 /// Follows [`WindSettings`]: what changed in them since the last step applies, speed and
@@ -46,7 +46,14 @@ pub fn apply_wind_settings(
             refused = Some(e);
         }
         if needs_rebuild(seen, &target) {
-            match start_rebuild(target.clone(), Some(field.generation())) {
+            // The mean wind applies at once (above) and the field leads it (a direct edit the
+            // settings have not seen yet included): the rebuild starts from the field's.
+            let mut build = target.clone();
+            let live = field.config();
+            build.reference_speed = live.reference_speed;
+            build.direction = live.direction;
+            build.pulse = live.pulse;
+            match start_rebuild(build, Some((field.generation(), Mean::of(&field)))) {
                 Ok(job) => {
                     commands.insert_resource(job);
                 }
@@ -80,26 +87,31 @@ pub fn apply_wind_settings(
 }
 
 /// Counts the [`WindRebuild`] in flight down by one fixed step; at its step, swaps in the new
-/// field (waiting for it if it is late), with the old clock and the live speed and direction.
+/// field (waiting for it if it is late) with the old clock and the merged mean wind
+/// ([`hand_over`]). A field made after the request, or any other field than the one the rebuild
+/// replaces, wins and the rebuild is dropped.
 pub fn land_wind_rebuild(
     mut commands: Commands,
     rebuild: Option<ResMut<WindRebuild>>,
     old: Option<Res<WindField>>,
-    settings: Option<Res<WindSettings>>,
     mut rebuilt: MessageWriter<WindRebuilt>,
 ) {
     let Some(mut rebuild) = rebuild else {
         return;
     };
-    let current = old.as_ref().map(|f| f.generation());
-    match (rebuild.replaces, current) {
-        (None, _) => rebuild.replaces = current,
-        (Some(a), Some(b)) if a != b => {
-            info!("a WindField was inserted while a rebuild was building: the rebuild is dropped");
-            commands.remove_resource::<WindRebuild>();
-            return;
+    let later = match (rebuild.replaces, old.as_deref()) {
+        (None, Some(live)) if live.generation() >= rebuild.requested => true,
+        (None, Some(live)) => {
+            rebuild.replaces = Some((live.generation(), Mean::of(live)));
+            false
         }
-        _ => {}
+        (Some((replaced, _)), Some(live)) => replaced != live.generation(),
+        (_, None) => false,
+    };
+    if later {
+        info!("a WindField was inserted after a rebuild was requested: the rebuild is dropped");
+        commands.remove_resource::<WindRebuild>();
+        return;
     }
     rebuild.elapsed += 1;
     if rebuild.elapsed < rebuild.steps {
@@ -120,18 +132,13 @@ pub fn land_wind_rebuild(
     rebuild.task = None;
     let mut field = field;
     if let Some(old) = old.as_deref() {
-        // Speed and direction changed while it built (directly or through the settings).
-        let (speed, direction) = match settings.as_deref() {
-            Some(s) => (s.reference_speed, s.direction),
-            None => (old.config().reference_speed, old.config().direction),
-        };
-        if let Err(e) = field
-            .set_reference_speed(speed)
-            .and_then(|()| field.set_direction(direction))
-        {
-            warn!("WindRebuild: {e}; the rebuilt field keeps its own speed and direction");
+        let base = rebuild
+            .replaces
+            .map_or_else(|| Mean::of(old), |(_, base)| base);
+        if let Err(e) = hand_over(&mut field, old, base) {
+            warn!("WindRebuild: {e}; the rebuilt field keeps its own mean wind");
+            field.continue_clock_of(old);
         }
-        field.continue_clock_of(old);
     }
     rebuilt.write(WindRebuilt {
         config: field.config().clone(),

@@ -94,6 +94,10 @@ pub struct FallPath {
     still: Vec3,
     /// Control points p_{i−2}, p_{i−1}, p_i.
     points: [Vec3; 3],
+    /// What rounding left out of p_i so far (compensated summation): far from the origin a
+    /// step's move can be below f32's spacing, and is carried until it adds up to one, so a
+    /// fall let go 1e6 m up still moves at its speed on average.
+    carry: Vec3,
     /// Orientation at p_{i−1} and p_i.
     orientations: [Quat; 2],
     ground: f32,
@@ -178,6 +182,7 @@ impl FallPath {
             drift,
             still: Vec3::ZERO,
             points: [position; 3],
+            carry: Vec3::ZERO,
             orientations: [yaw; 2],
             ground: release.ground,
             landed: false,
@@ -268,11 +273,20 @@ impl FallPath {
         if self.drift.length_squared() < MIN_DRIFT * MIN_DRIFT {
             self.drift = Vec3::ZERO;
         }
-        let mut next = self.points[2] + self.drift * dt + delta;
+        let here = self.points[2];
+        let step = self.drift * dt + delta + self.carry;
+        let mut next = here + step;
+        // Exact: `next` and `here` are within a factor of two of each other wherever a step is
+        // smaller than the position (Sterbenz).
+        self.carry = step - (next - here);
+        if !self.carry.is_finite() {
+            self.carry = Vec3::ZERO;
+        }
         let landed = next.y <= self.ground;
         if landed {
             next.y = self.ground;
             self.drift = Vec3::ZERO;
+            self.carry = Vec3::ZERO;
         }
         let orientation = self.orientation_now(model.database(), wind, tilt, dt);
         self.points = [self.points[1], self.points[2], next];

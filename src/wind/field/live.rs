@@ -174,8 +174,10 @@ impl WindField {
         self.paused = old.paused;
         self.ease = old.ease;
         self.step_start = old.step_start;
-        self.drift_base = old.drift_base;
-        self.drift_since = old.drift_since;
+        // The pattern's travel so far, booked at the old field's own speed and direction: it
+        // goes on from where it is, whatever this field's mean wind.
+        self.drift_base = old.drift_at(old.time);
+        self.drift_since = old.time;
     }
 }
 
@@ -189,5 +191,42 @@ fn check_time_constant(time_constant: f32) -> Result<(), WindError> {
             value: time_constant,
             reason: "must be finite and ≥ 0",
         }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_rebuilt_field_goes_on_from_where_the_pattern_was() {
+        // The old field blew 5 m/s along +X for 10 s; the new one blows 9 m/s along +Z. At the
+        // hand-over the pattern has travelled 50 m along X, and goes on from there.
+        let mut old = WindField::new(WindConfig {
+            reference_speed: 5.0,
+            grid: [16, 16],
+            ..WindConfig::default()
+        })
+        .unwrap();
+        for _ in 0..600 {
+            old.advance(1.0 / 60.0);
+        }
+        let mut new = WindField::new(WindConfig {
+            reference_speed: 9.0,
+            direction: Vec2::Y,
+            grid: [16, 16],
+            ..WindConfig::default()
+        })
+        .unwrap();
+        new.continue_clock_of(&old);
+        let at = old.drift_at(old.time);
+        assert!((at - DVec2::new(50.0, 0.0)).length() < 1e-4, "{at}");
+        assert_eq!(new.drift_at(new.time), at);
+        // One more second: 9 m along +Z from there.
+        let later = new.drift_at(new.time + 1.0);
+        assert!(
+            (later - at - DVec2::new(0.0, 9.0)).length() < 1e-9,
+            "{later}"
+        );
     }
 }

@@ -102,6 +102,11 @@ mod read;
 /// Numbers the fields made by [`WindField::new`].
 static GENERATIONS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
 
+/// The generation the next [`WindField::new`] will have: fields made later have this or more.
+pub(crate) fn next_generation() -> u64 {
+    GENERATIONS.load(std::sync::atomic::Ordering::Relaxed)
+}
+
 impl WindField {
     /// Builds the field: validates `config`, then synthesises the three turbulence components
     /// (two in one complex FFT, see [`Synthesizer::pair`]). The amplitude table and FFT plans of

@@ -2,9 +2,11 @@
 //! lift and drag: a physically simulated flag.
 
 use crate::error::InvalidValue;
+
+mod loads;
+mod screen;
 use bevy::math::Vec3;
 
-use super::force::face_force;
 use super::plate::{AeroCoefficients, AeroError};
 use crate::cloth::{ClothError, ClothGrid};
 
@@ -19,8 +21,12 @@ pub enum Pinning {
 
 /// Most substeps per step.
 pub(crate) const CLOTH_MAX_SUBSTEPS: u32 = 64;
+
 /// Most constraint iterations per substep: [`ParticleCloth::iterations`] is clamped to it.
 pub(crate) const CLOTH_MAX_ITERATIONS: usize = 64;
+/// Relative stretch of a stretch edge (seen at the start of a sweep) above which the solver
+/// sweeps again past [`ParticleCloth::iterations`].
+const STRETCH_TOLERANCE: f32 = 0.05;
 /// Node masses a particle cloth accepts, kg: lighter nodes would make 1/m overflow the solver's
 /// rates, heavier ones lose every force to rounding.
 const MIN_NODE_MASS: f64 = 1e-12;
@@ -31,9 +37,25 @@ const MAX_NODE_MASS: f64 = 1e9;
 ///
 /// Each substep: per triangle, the face law with the triangle's mean velocity and wind, its lift
 /// and drag shared by its three nodes; per node, the velocity update with the drag implicit
-/// (v' = (v + h (g + L/m + K u/m)) / (1 + h K/m), stable at any step, no overshoot of the wind);
-/// then XPBD projection of stretch, shear and bend constraints, and velocities from the moved
-/// positions. At least [`ParticleCloth::min_substeps`] substeps per step, more (up to
+/// (stable at any step, no overshoot of the wind); then XPBD projection of stretch, shear and
+/// bend constraints, and velocities from the moved positions.
+///
+/// Three readings make a thin sheet flap as flags do (waves running to the free edge at about
+/// the wind's speed, the tip swinging a fifth to a half of the length, f A / U ≈ 0.2; see the
+/// report's "against measurements"), where the face law alone gives a stiff, buzzing sheet:
+/// - **Pressure acts along the normal.** The face law's drag, ½ C_D ρ A |n·v_rel| |v_rel|,
+///   pushes each node along its normal only (the mean of its faces' normals):
+///   (m + h K) v_n' = m v_n + h K u_n. Along −v_rel, as for a rigid plate, its share along
+///   the sheet would be a pressure pulling the cloth taut from its free edge, which damps every
+///   wave.
+/// - **Along the sheet, skin friction**, ½ ρ C_f |v_t| v_t on each side, C_f = 0.005
+///   (Prandtl's turbulent flat plate at Re ≈ 10⁶), also implicit.
+/// - **Lift is smoothed** over a tenth of the cloth's smaller side (a screened filter,
+///   (1 − ℓ²∇²) L̃ = L, along rows and columns): the face law reacts to each face's own incidence, while in
+///   potential flow the pressure on a wave falls as 1/|k| (Argentina & Mahadevan 2005), so waves
+///   a few nodes long are not driven.
+///
+/// At least [`ParticleCloth::min_substeps`] substeps per step, more (up to
 /// [`ParticleCloth::MAX_SUBSTEPS`](crate::aero::ParticleCloth::MAX_SUBSTEPS)) to keep h × lift rate ≤ 1/4; past that cap the lift is limited to
 /// turning a node's relative velocity by 1/4 rad per substep.
 #[derive(Clone, Debug)]
@@ -50,13 +72,21 @@ pub struct ParticleCloth {
     tethers: Vec<(u32, u32, f32)>,
     node_mass: f32,
     coefficients: AeroCoefficients,
-    /// Constraint iterations per substep, used within 1..=[`ParticleCloth::MAX_ITERATIONS`](crate::aero::ParticleCloth::MAX_ITERATIONS).
+    /// Fewest constraint iterations per substep, used within
+    /// 1..=[`ParticleCloth::MAX_ITERATIONS`](crate::aero::ParticleCloth::MAX_ITERATIONS); more
+    /// are swept while a stretch edge is more than 5 % off its length (gales).
     pub iterations: usize,
     /// Fewest substeps per step (XPBD converges by substeps more than by iterations), used
     /// within 1..=[`ParticleCloth::MAX_SUBSTEPS`](crate::aero::ParticleCloth::MAX_SUBSTEPS).
     pub min_substeps: u32,
     lift: Vec<Vec3>,
     drag: Vec<f32>,
+    /// Each node's normal (the mean of its faces') and skin-friction rate (kg/s).
+    normals: Vec<Vec3>,
+    friction: Vec<f32>,
+    scratch: Vec<f32>,
+    /// The air's force on the cloth over the last step (mean), N.
+    force: Vec3,
     lambdas: Vec<f32>,
     wind: Vec<Vec3>,
     previous: Vec<Vec3>,
@@ -190,6 +220,10 @@ impl ParticleCloth {
             min_substeps: 8,
             lift: vec![Vec3::ZERO; n],
             drag: vec![0.0; n],
+            normals: vec![Vec3::ZERO; n],
+            friction: vec![0.0; n],
+            scratch: Vec::new(),
+            force: Vec3::ZERO,
             lambdas: Vec::new(),
             wind: vec![Vec3::ZERO; n],
         })
@@ -226,6 +260,13 @@ impl ParticleCloth {
             .fold(0.0, f32::max)
     }
 
+    /// The mean force of the air on the whole cloth over the last [`Self::step`], N (local
+    /// frame): lift, pressure drag and skin friction, as they were applied. Its component along
+    /// the wind is the cloth's drag.
+    pub fn aerodynamic_force(&self) -> Vec3 {
+        self.force
+    }
+
     /// Kinetic plus potential energy of the free nodes, J.
     pub fn energy(&self, gravity: Vec3) -> f32 {
         self.positions
@@ -245,6 +286,7 @@ impl ParticleCloth {
             return;
         }
         let mut remaining = dt;
+        self.force = Vec3::ZERO;
         let longest = dt / self.min_substeps.clamp(1, CLOTH_MAX_SUBSTEPS) as f32;
         for i in 0..CLOTH_MAX_SUBSTEPS {
             for (u, p) in self.wind.iter_mut().zip(&self.positions) {
@@ -267,46 +309,10 @@ impl ParticleCloth {
                 break;
             }
         }
-    }
-
-    /// Lift per node and drag coefficient per node from every triangle; returns the largest
-    /// lift rate (1/s).
-    fn loads(&mut self) -> f32 {
-        let c = self.coefficients;
-        let columns = self.grid.columns;
-        self.lift.fill(Vec3::ZERO);
-        self.drag.fill(0.0);
-        let mut rate = 0.0f32;
-        for k in 0..self.grid.rows - 1 {
-            for j in 0..columns - 1 {
-                let a = k * columns + j;
-                let (b, cc, d) = (a + columns, a + 1, a + columns + 1);
-                for [p, q, r] in [[a, b, cc], [cc, b, d]] {
-                    let (xp, xq, xr) = (self.positions[p], self.positions[q], self.positions[r]);
-                    let cross = (xq - xp).cross(xr - xp);
-                    let area = 0.5 * cross.length();
-                    let v = (self.velocities[p] + self.velocities[q] + self.velocities[r]) / 3.0;
-                    let u = (self.wind[p] + self.wind[q] + self.wind[r]) / 3.0;
-                    let rel = v - u;
-                    let lift = face_force(rel, cross, area, 0.0, c.lift, c.density);
-                    let speed = rel.length();
-                    let k_drag = if speed > 0.0 {
-                        face_force(rel, cross, area, c.drag, 0.0, c.density).length() / speed
-                    } else {
-                        0.0
-                    };
-                    for node in [p, q, r] {
-                        self.lift[node] += lift / 3.0;
-                        self.drag[node] += k_drag / 3.0;
-                    }
-                    let r = c.density * c.lift * area * speed / self.node_mass;
-                    if r.is_finite() {
-                        rate = rate.max(r);
-                    }
-                }
-            }
+        self.force /= dt;
+        if !self.force.is_finite() {
+            self.force = Vec3::ZERO;
         }
-        rate
     }
 
     fn substep(&mut self, h: f32, gravity: Vec3) {
@@ -314,10 +320,17 @@ impl ParticleCloth {
         self.previous.copy_from_slice(&self.positions);
         for i in 0..self.positions.len() {
             if self.inverse_mass[i] == 0.0 {
+                // Held: the air's push on it goes into the pin (and into the force).
+                let (u, n) = (self.wind[i], self.normals[i]);
+                let held = self.lift[i] + n * (self.drag[i] * u.dot(n));
+                let held = held + self.friction[i] * (u - n * u.dot(n));
+                if held.is_finite() {
+                    self.force += h * held;
+                }
                 self.velocities[i] = Vec3::ZERO;
                 continue;
             }
-            let k = self.drag[i];
+            let (k, f, n) = (self.drag[i], self.friction[i], self.normals[i]);
             // Lift may turn the node's relative velocity by at most 1/4 rad per substep: a
             // limiter that only binds when the substep cap is reached (gales, huge steps).
             let mut lift = self.lift[i] / m;
@@ -325,15 +338,30 @@ impl ParticleCloth {
             if lift.length() > most {
                 lift = lift.normalize_or_zero() * most;
             }
-            let v = (self.velocities[i] + h * (gravity + lift + k * self.wind[i] / m))
-                / (1.0 + h * k / m);
-            self.velocities[i] = if v.is_finite() { v } else { Vec3::ZERO };
+            // Implicit: pressure drag along the normal, skin friction along the sheet.
+            let v = self.velocities[i] + h * (gravity + lift);
+            let u = self.wind[i];
+            let (v_n, u_n) = (v.dot(n), u.dot(n));
+            let normal = (v_n + h * k * u_n / m) / (1.0 + h * k / m);
+            let (v_t, u_t) = (v - n * v_n, u - n * u_n);
+            let along = (v_t + h * f * u_t / m) / (1.0 + h * f / m);
+            let v = along + n * normal;
+            if v.is_finite() {
+                self.velocities[i] = v;
+                self.force += h * (m * lift + n * (k * (u_n - normal)) + f * (u_t - along));
+            } else {
+                self.velocities[i] = Vec3::ZERO;
+            }
             self.positions[i] += h * self.velocities[i];
         }
         // XPBD: λ per constraint starts at zero each substep.
         self.lambdas.clear();
         self.lambdas.resize(self.constraints.len(), 0.0);
-        for _ in 0..self.iterations.clamp(1, CLOTH_MAX_ITERATIONS) {
+        // At least `iterations` sweeps, more (to the cap) while a stretch edge is still more
+        // than STRETCH_TOLERANCE off its length: a gale's loads need them, a breeze's do not.
+        let fewest = self.iterations.clamp(1, CLOTH_MAX_ITERATIONS);
+        for sweep in 0..CLOTH_MAX_ITERATIONS {
+            let mut worst = 0.0f32;
             for (lambda, &(a, b, rest, compliance)) in
                 self.lambdas.iter_mut().zip(&self.constraints)
             {
@@ -344,12 +372,18 @@ impl ParticleCloth {
                 if wa + wb == 0.0 || length <= 1e-12 || !length.is_finite() {
                     continue;
                 }
+                if compliance == 0.0 {
+                    worst = worst.max((length - rest).abs() / rest);
+                }
                 let alpha = compliance / (h * h);
                 let dl = (-(length - rest) - alpha * *lambda) / (wa + wb + alpha);
                 *lambda += dl;
                 let n = delta / length;
                 self.positions[a] += wa * dl * n;
                 self.positions[b] -= wb * dl * n;
+            }
+            if sweep + 1 >= fewest && (worst <= STRETCH_TOLERANCE || worst.is_nan()) {
+                break;
             }
         }
         for &(node, pin, rest) in &self.tethers {
