@@ -98,58 +98,40 @@ fn faces(c: &mut Criterion) {
             BatchSize::SmallInput,
         )
     });
-    // The same 24 × 16 flag: P-descriptor (advance + rebuild) against the particle cloth.
-    let grid = ClothGrid {
-        rows: 16,
-        columns: 24,
-        width: 1.5,
-        height: 1.0,
-    };
+    // A flag of 24 × 16 nodes and one of 36 × 24: P-descriptor (advance + rebuild) against
+    // the particle cloth of the same grid.
     let params = ClothPreset::FlagFlappingFrozen.params();
-    let mut procedural = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
-    group.bench_function("flag_step_24x16/procedural", |b| {
-        b.iter(|| {
-            procedural.advance(DT, params.wind_speed);
-            procedural.rebuild();
-            black_box(procedural.positions()[0])
-        })
-    });
-    let mut physical =
-        ParticleCloth::new(grid, 0.15, AeroCoefficients::default(), Pinning::PoleColumn).unwrap();
     let gravity = Vec3::new(0.0, -9.81, 0.0);
-    group.bench_function("flag_step_24x16/physical_particles", |b| {
-        b.iter(|| {
-            physical.step(DT, gravity, &|p| {
-                wind.velocity(p + Vec3::new(0.0, 5.0, 0.0))
-            });
-            black_box(physical.positions()[0])
-        })
-    });
-    // The size: 24 rows × 36 columns, against the P-descriptor flag of that grid.
-    let grid = ClothGrid {
-        rows: 24,
-        columns: 36,
-        width: 1.5,
-        height: 1.0,
-    };
-    let mut procedural = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
-    group.bench_function("flag_step_36x24/procedural", |b| {
-        b.iter(|| {
-            procedural.advance(DT, params.wind_speed);
-            procedural.rebuild();
-            black_box(procedural.positions()[0])
-        })
-    });
-    let mut physical =
-        ParticleCloth::new(grid, 0.15, AeroCoefficients::default(), Pinning::PoleColumn).unwrap();
-    group.bench_function("flag_step_36x24/physical_particles", |b| {
-        b.iter(|| {
-            physical.step(DT, gravity, &|p| {
-                wind.velocity(p + Vec3::new(0.0, 5.0, 0.0))
-            });
-            black_box(physical.positions()[0])
-        })
-    });
+    for (rows, columns) in [(16, 24), (24, 36)] {
+        let grid = ClothGrid {
+            rows,
+            columns,
+            width: 1.5,
+            height: 1.0,
+        };
+        let mut procedural = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
+        group.bench_function(format!("flag_step_{columns}x{rows}/procedural"), |b| {
+            b.iter(|| {
+                procedural.advance(DT, params.wind_speed);
+                procedural.rebuild();
+                black_box(procedural.positions()[0])
+            })
+        });
+        let mut physical =
+            ParticleCloth::new(grid, 0.15, AeroCoefficients::default(), Pinning::PoleColumn)
+                .unwrap();
+        group.bench_function(
+            format!("flag_step_{columns}x{rows}/physical_particles"),
+            |b| {
+                b.iter(|| {
+                    physical.step(DT, gravity, &|p| {
+                        wind.velocity(p + Vec3::new(0.0, 5.0, 0.0))
+                    });
+                    black_box(physical.positions()[0])
+                })
+            },
+        );
+    }
     group.finish();
 }
 

@@ -100,10 +100,9 @@ fn pops(turns: &[f32]) -> Vec<(usize, [f32; 3])> {
         .collect()
 }
 
-#[test]
-fn no_pops_in_any_motion_with_or_without_wind() {
-    let model = FallModel::default();
-    let wind = WindField::new(WindConfig {
+/// The evolving 6 m/s wind the continuity checks fall through.
+fn gusty_wind() -> WindField {
+    WindField::new(WindConfig {
         reference_speed: 6.0,
         temporal: TemporalMode::Evolving {
             samples: 8,
@@ -112,12 +111,23 @@ fn no_pops_in_any_motion_with_or_without_wind() {
         grid: [48, 48],
         ..default()
     })
-    .unwrap();
-    let objects = [
+    .unwrap()
+}
+
+/// A paper coin, a playing card and a maple leaf: the continuity checks' objects.
+fn pop_objects() -> [FallingObject; 3] {
+    [
         FallingObject::default(),
         FallPreset::PlayingCard.object(),
         FallPreset::MapleLeaf.object(),
-    ];
+    ]
+}
+
+#[test]
+fn no_pops_in_any_motion_with_or_without_wind() {
+    let model = FallModel::default();
+    let wind = gusty_wind();
+    let objects = pop_objects();
     let mut worst_move = 0.0f32;
     for object in &objects {
         let u = object.regime().unwrap().descent_speed;
@@ -163,21 +173,8 @@ fn every_join_turns_on_at_the_rate_of_its_neighbours() {
     // runs, one step turning about 36° between steps of about 14°: not at piece joins, where a
     // C¹ correction of angle and rate was tried and changed nothing.)
     let model = FallModel::default();
-    let wind = WindField::new(WindConfig {
-        reference_speed: 6.0,
-        temporal: TemporalMode::Evolving {
-            samples: 8,
-            period: 10.0,
-        },
-        grid: [48, 48],
-        ..default()
-    })
-    .unwrap();
-    let objects = [
-        FallingObject::default(),
-        FallPreset::PlayingCard.object(),
-        FallPreset::MapleLeaf.object(),
-    ];
+    let wind = gusty_wind();
+    let objects = pop_objects();
     let (mut checked, mut failures) = (0usize, Vec::new());
     let mut fastest = 0.0f32;
     for object in &objects {
