@@ -2,14 +2,17 @@
 //! run, written as Markdown with SVG plots, plus a stability table of the stiff and extreme
 //! cases the crate claims to handle.
 //!
-//! `cargo run --release --example report -- [DIR] [--quick]` writes `DIR/report.md` (default
-//! `target/report`) and its plots, and prints the Markdown. `--quick` runs fewer repetitions
-//! (for CI in a debug build; its timings mean little).
+//! `cargo run --release --example report -- [DIR] [--quick] [--only SECTION]` writes
+//! `DIR/report.md` (default `target/report`) and its plots, and prints the Markdown. `--quick`
+//! runs fewer repetitions (for CI in a debug build; its timings mean little); `--only` runs one
+//! section (`spectrum`, `wind`, `freefall`, `presets`, `cloth`, `aero`, `particle_cloth`,
+//! `measurements`, `costs`, `stability`).
 
 mod aero;
 mod cloth;
 mod costs;
 mod freefall;
+mod measurements;
 mod plot;
 mod presets;
 mod spectrum;
@@ -20,6 +23,9 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use plot::Plot;
+
+/// A section of the report: its name for `--only`, and what writes it.
+type Section = (&'static str, fn(&mut Report));
 
 /// The report being written.
 pub struct Report {
@@ -81,9 +87,12 @@ pub fn sci(x: f64) -> String {
 fn main() {
     let mut dir = PathBuf::from("target/report");
     let mut quick = false;
-    for arg in std::env::args().skip(1) {
+    let mut only = None;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
         match arg.as_str() {
             "--quick" => quick = true,
+            "--only" => only = args.next(),
             other => dir = other.into(),
         }
     }
@@ -106,15 +115,23 @@ fn main() {
         cpu_name(),
         std::thread::available_parallelism().map_or(1, |n| n.get())
     );
-    spectrum::report(&mut report);
-    wind::report(&mut report);
-    freefall::report(&mut report);
-    presets::report(&mut report);
-    cloth::report(&mut report);
-    aero::report(&mut report);
-    aero::particle_cloth(&mut report);
-    costs::report(&mut report);
-    stability::report(&mut report);
+    let sections: [Section; 10] = [
+        ("spectrum", spectrum::report),
+        ("wind", wind::report),
+        ("freefall", freefall::report),
+        ("presets", presets::report),
+        ("cloth", cloth::report),
+        ("aero", aero::report),
+        ("particle_cloth", aero::particle_cloth),
+        ("measurements", measurements::report),
+        ("costs", costs::report),
+        ("stability", stability::report),
+    ];
+    for (name, section) in sections {
+        if only.as_deref().is_none_or(|o| o == name) {
+            section(&mut report);
+        }
+    }
     let path = dir.join("report.md");
     std::fs::write(&path, &report.markdown).expect("cannot write report.md");
     println!("{}", report.markdown);

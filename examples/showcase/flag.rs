@@ -1,7 +1,8 @@
 //! A flag on a pole, a banner on a mast, or a curtain in an open window, shaped by P-type
 //! Fourier-descriptor yarns driven by 1/f^β noise and the shared wind field, each with its Table 1
-//! preset named on screen. V cycles them, F switches to the same object's row of the other wind
-//! model (frozen or non-frozen).
+//! preset named on screen; and the procedural flag beside the physical one (a `PhysicalCloth`:
+//! particles pushed by per-face lift and drag). V cycles them, F switches to the same object's
+//! row of the other wind model (frozen or non-frozen).
 
 use bevy::asset::RenderAssetUsages;
 use bevy::image::Image;
@@ -20,14 +21,16 @@ pub enum Fabric {
     Flag,
     Banner,
     Curtain,
+    /// The procedural flag with a physical one on a second pole upwind.
+    Physical,
 }
 
 impl Fabric {
     /// Table 1 row for this fabric in a gentle breeze.
     pub fn preset(self, non_frozen: bool) -> ClothPreset {
         match (self, non_frozen) {
-            (Self::Flag, false) => ClothPreset::FlagFlappingFrozen,
-            (Self::Flag, true) => ClothPreset::FlagFlappingEvolving,
+            (Self::Flag | Self::Physical, false) => ClothPreset::FlagFlappingFrozen,
+            (Self::Flag | Self::Physical, true) => ClothPreset::FlagFlappingEvolving,
             (Self::Banner, false) => ClothPreset::BannerFlappingFrozen,
             (Self::Banner, true) => ClothPreset::BannerFlappingEvolving,
             (Self::Curtain, false) => ClothPreset::CurtainDriftingFrozen,
@@ -35,13 +38,14 @@ impl Fabric {
         }
     }
 
-    const ALL: [Self; 3] = [Self::Flag, Self::Banner, Self::Curtain];
+    const ALL: [Self; 4] = [Self::Flag, Self::Banner, Self::Curtain, Self::Physical];
 
     fn name(self) -> &'static str {
         match self {
             Self::Flag => "flag",
             Self::Banner => "banner",
             Self::Curtain => "curtain",
+            Self::Physical => "physical",
         }
     }
 
@@ -49,7 +53,8 @@ impl Fabric {
         match self {
             Self::Flag => Self::Banner,
             Self::Banner => Self::Curtain,
-            Self::Curtain => Self::Flag,
+            Self::Curtain => Self::Physical,
+            Self::Physical => Self::Flag,
         }
     }
 }
@@ -61,6 +66,14 @@ const WINDOW_BOTTOM: f32 = 0.9;
 #[derive(Component)]
 pub struct Hanging;
 
+/// The physical flag and its pole, there only with [`Fabric::Physical`].
+#[derive(Component)]
+struct PhysicalSide;
+
+/// Where the physical flag's pole stands: 3.4 m upwind of the procedural one, so the two fly
+/// side by side in the camera's view.
+const PHYSICAL_POLE: Vec3 = Vec3::new(-3.4, 0.0, 0.0);
+
 /// Scenery shown only with one fabric: the pole with the flag and banner, the wall, window and
 /// rod with the curtain.
 #[derive(Component)]
@@ -70,7 +83,7 @@ struct Setting(&'static [Fabric]);
 struct Textures([Handle<Image>; 3]);
 
 pub fn plugin(app: &mut App) {
-    // `--fabric flag|banner|curtain` picks the first fabric.
+    // `--fabric flag|banner|curtain|physical` picks the first fabric.
     let fabric = app
         .world()
         .get_resource::<super::common::ExampleArgs>()
@@ -172,7 +185,7 @@ fn setup(
         here.clone(),
     ));
     let metal = materials.add(Color::srgb(0.75, 0.75, 0.78));
-    let on_pole: &'static [Fabric] = &[Fabric::Flag, Fabric::Banner];
+    let on_pole: &'static [Fabric] = &[Fabric::Flag, Fabric::Banner, Fabric::Physical];
     commands.spawn((
         Setting(on_pole),
         Mesh3d(meshes.add(Cylinder::new(0.05, 6.0))),
@@ -273,7 +286,7 @@ pub fn cloth_for(fabric: Fabric, non_frozen: bool) -> (Cloth, Transform) {
     let params = fabric.preset(non_frozen).params();
     let pole = Transform::from_xyz(0.05, 5.95, 0.0);
     let (grid, attachment, transform) = match fabric {
-        Fabric::Flag => (grid(28, 42, 2.1, 1.4), ClothAttachment::Pole, pole),
+        Fabric::Flag | Fabric::Physical => (grid(28, 42, 2.1, 1.4), ClothAttachment::Pole, pole),
         Fabric::Banner => (grid(14, 64, 3.6, 0.6), ClothAttachment::Pole, pole),
         // The rod runs along local +X (world −Z); the curtain billows along local +Z (world +X),
         // into the room, downwind.
@@ -309,18 +322,72 @@ fn keys(
     }
 }
 
+/// With [`Fabric::Physical`], a second pole upwind flying a [`PhysicalCloth`] of the procedural
+/// flag's size (20 × 30 nodes, 0.15 kg/m²) and fabric; otherwise neither.
+fn physical_side(
+    commands: &mut Commands,
+    fabric: Fabric,
+    shown: &Query<Entity, With<PhysicalSide>>,
+    meshes: &mut Assets<Mesh>,
+    materials: &mut Assets<StandardMaterial>,
+    texture: Handle<Image>,
+) {
+    for entity in shown {
+        commands.entity(entity).despawn();
+    }
+    if fabric != Fabric::Physical {
+        return;
+    }
+    let here = DespawnOnExit(Scene::Flag);
+    commands.spawn((
+        PhysicalSide,
+        Mesh3d(meshes.add(Cylinder::new(0.05, 6.0))),
+        MeshMaterial3d(materials.add(Color::srgb(0.75, 0.75, 0.78))),
+        Transform::from_translation(PHYSICAL_POLE + Vec3::Y * 3.0),
+        here.clone(),
+    ));
+    commands.spawn((
+        PhysicalSide,
+        Name::new("physical flag"),
+        PhysicalCloth {
+            grid: grid(20, 30, 2.1, 1.4),
+            ..default()
+        },
+        MeshMaterial3d(materials.add(StandardMaterial {
+            base_color_texture: Some(texture),
+            perceptual_roughness: 0.8,
+            double_sided: true,
+            cull_mode: None,
+            ..default()
+        })),
+        Transform::from_translation(PHYSICAL_POLE + Vec3::new(0.05, 5.95, 0.0)),
+        here,
+    ));
+}
+
 #[allow(clippy::too_many_arguments)]
 fn apply_fabric(
     mut commands: Commands,
     fabric: Res<Fabric>,
     textures: Res<Textures>,
     hanging: Single<(Entity, &MeshMaterial3d<StandardMaterial>), With<Hanging>>,
+    shown: Query<Entity, With<PhysicalSide>>,
     mut scenery: Query<(&Setting, &mut Visibility)>,
     mut camera: Single<&mut Transform, (With<Camera3d>, Without<Hanging>)>,
     mut wind: ResMut<WindField>,
+    mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
 ) {
     let (entity, material) = *hanging;
+    let flag = textures.0[Fabric::Flag as usize].clone();
+    physical_side(
+        &mut commands,
+        *fabric,
+        &shown,
+        &mut meshes,
+        &mut materials,
+        flag,
+    );
     for (setting, mut visibility) in &mut scenery {
         *visibility = if setting.0.contains(&*fabric) {
             Visibility::Inherited
@@ -338,12 +405,18 @@ fn apply_fabric(
         // From above and in front, so the waves show in the outline.
         Fabric::Banner => (7.5, Vec3::new(-2.2, 7.6, 6.6), Vec3::new(1.6, 5.2, 0.0)),
         Fabric::Flag => (7.5, Vec3::new(-1.4, 7.8, 4.6), Vec3::new(1.1, 4.9, 0.0)),
+        // Both flags, the physical one on the left.
+        Fabric::Physical => (7.5, Vec3::new(-2.0, 8.4, 7.4), Vec3::new(-0.9, 4.9, 0.0)),
     };
     let _ = wind.set_reference_speed(speed);
     place_camera(&mut camera, eye, target);
     let (cloth, transform) = cloth_for(*fabric, false);
     if let Some(mut m) = materials.get_mut(&material.0) {
-        m.base_color_texture = Some(textures.0[*fabric as usize].clone());
+        let texture = match *fabric {
+            Fabric::Physical => Fabric::Flag,
+            other => other,
+        };
+        m.base_color_texture = Some(textures.0[texture as usize].clone());
     }
     commands.entity(entity).insert((cloth, transform));
 }
@@ -360,11 +433,16 @@ fn show_info(
     let p = &cloth.params;
     let non_frozen = matches!(p.model, ClothWindModel::Evolving { .. });
     let preset = fabric.preset(non_frozen);
+    let physical = if *fabric == Fabric::Physical {
+        "left: PhysicalCloth (particles, lift and drag)   right: procedural Cloth\n"
+    } else {
+        ""
+    };
     info.0 = format!(
-        "{:?}: Table 1 row \"{}\", {} wind (theta {:.1}, beta {:.2}, swirl |u| {}, band {})\n\
-         wind here {:.1} m/s -> |v| = {:.1} cells/frame      V flag/banner/curtain   \
+        "{physical}{}: Table 1 row \"{}\", {} wind (theta {:.1}, beta {:.2}, swirl |u| {}, band {})\n\
+         wind here {:.1} m/s -> |v| = {:.1} cells/frame      V flag/banner/curtain/physical   \
          F frozen/non-frozen",
-        *fabric,
+        preset.kind(),
         preset.observation(),
         if non_frozen { "non-frozen" } else { "frozen" },
         p.amplitude,

@@ -4,12 +4,12 @@
 //! and the aero bodies live.
 //!
 //! Keys: 1 leaves, 2 coin, 3 flag, 4 gallery · G gizmos (off, wind, paths and yarns, all) ·
-//! ↑/↓ wind speed · ←/→ wind direction · in the leaves scene B a blast, C the view (a dust devil wanders
-//! anyway) · in the flag scene V flag/banner/curtain, F frozen/non-frozen (the curtain has a
-//! fan).
+//! ↑/↓ wind speed · ←/→ wind direction · in the leaves scene B a blast, C the view (a dust devil
+//! wanders anyway) · in the flag scene V flag/banner/curtain/physical (the procedural flag beside
+//! a particle one), F frozen/non-frozen (the curtain has a fan).
 //!
 //! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag|gallery]
-//! [--fabric flag|banner|curtain] [--view meadow] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`
+//! [--fabric flag|banner|curtain|physical] [--view meadow] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`
 //!
 //! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits;
 //! `--gizmos` starts with the falling paths and cloth yarns drawn.

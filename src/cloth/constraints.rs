@@ -5,7 +5,8 @@ use std::f32::consts::{FRAC_PI_2, PI};
 
 use bevy::math::{Vec2, Vec3};
 
-/// Start of yarn `k` in its yarn plane (along the yarn, across it): eq. 8's pole edge.
+/// The pole edge of eq. 8 as a hem of fixed length: the start of every yarn, written to `out`
+/// (x downwind, y up, z across; one node per yarn, `spacing` m apart along the hem).
 ///
 /// Eq. 8 bows the edge by W1 cos(γ + α_k) = −W1 sin α_k (γ = π/2, α_k = kπ/(n−1)), an arc that
 /// is 0 at both ends and W1 in the middle; we turn its sign so the edge bows downwind. Its lean
@@ -13,11 +14,46 @@ use bevy::math::{Vec2, Vec3};
 /// fixed ("a flag fixed at two ends with its left edge stretching ... simple arc-like
 /// stretching"); we read it as the same arc across the stream, W2 sin α_k. So both ends stay on
 /// the pole and the edge between them bulges downwind by `bow` and sideways by `lean` (m).
-pub fn pole_edge(k: usize, rows: usize, bow: f32, lean: f32) -> Vec2 {
-    let (gamma, alpha) = edge_angle(k, rows);
-    let arc = -(gamma + alpha).cos();
-    let arc = if k == 0 || k + 1 == rows { 0.0 } else { arc };
-    Vec2::new(bow * arc, lean * arc)
+///
+/// The paper keeps the nodes' heights, so a bowed edge is longer than the cloth and its
+/// neighbouring nodes break eq. 7 (by 2.4 % at a flag's bow). Here the hem keeps its length:
+/// each node sits `spacing` below-and-out from the one above, so bowing the edge lifts its lower
+/// end up the pole, by about (π W / 2)² / H of the height H (1 % at a flag's bow), as a real
+/// hem does. A bow so deep that one step of the arc would take more than half a spacing is
+/// scaled down to that (the hem would otherwise fold back on itself).
+pub fn pole_hem(rows: usize, spacing: f32, bow: f32, lean: f32, out: &mut Vec<Vec3>) {
+    out.clear();
+    let arc = |k: usize| {
+        let (gamma, alpha) = edge_angle(k, rows);
+        if k == 0 || k + 1 == rows {
+            0.0
+        } else {
+            -(gamma + alpha).cos()
+        }
+    };
+    let bulge = Vec2::new(bow, lean);
+    let bulge = if bulge.is_finite() { bulge } else { Vec2::ZERO };
+    // The steepest step of the arc is at the ends: sin(π / (n − 1)).
+    let steepest = (0..rows.saturating_sub(1))
+        .map(|k| (arc(k + 1) - arc(k)).abs())
+        .fold(0.0f32, f32::max)
+        * bulge.length();
+    let scale = if steepest > 0.5 * spacing {
+        0.5 * spacing / steepest
+    } else {
+        1.0
+    };
+    let mut y = 0.0;
+    let mut last = Vec2::ZERO;
+    for k in 0..rows {
+        let h = bulge * (scale * arc(k));
+        if k > 0 {
+            let step = (h - last).length_squared();
+            y -= (spacing * spacing - step).max(0.0).sqrt();
+        }
+        out.push(Vec3::new(h.x, y, h.y));
+        last = h;
+    }
 }
 
 /// Eq. 7: working outward from the leading yarn, every node further than `max_distance` from
@@ -82,5 +118,21 @@ mod tests {
         assert_eq!(&p[..4], &before[..4]);
         assert!((p[5].distance(p[3]) - 1.0).abs() < 1e-6);
         assert_eq!(p[4], before[4], "the pole column is fixed");
+    }
+
+    #[test]
+    fn the_hem_keeps_its_length_and_both_ends_on_the_pole() {
+        let mut hem = Vec::new();
+        for (rows, bow) in [(2, 0.3), (9, 0.0), (9, 0.2), (24, 0.06), (64, 5.0)] {
+            pole_hem(rows, 0.1, bow, bow / 2.0, &mut hem);
+            assert_eq!(hem.len(), rows);
+            assert_eq!(hem[0], Vec3::ZERO);
+            let last = hem[rows - 1];
+            assert!(last.x == 0.0 && last.z == 0.0, "{rows} {bow}: {last}");
+            for pair in hem.windows(2) {
+                let gap = pair[0].distance(pair[1]);
+                assert!((gap - 0.1).abs() < 1e-6, "{rows} {bow}: a gap of {gap}");
+            }
+        }
     }
 }

@@ -32,6 +32,22 @@ pub const LINE_YARNS: usize = 5;
 /// Noise cells per yarn length: Table 1's shifts |v| are cells per paper frame.
 pub const CELLS_PER_YARN: usize = 32;
 
+/// The weight of harmonic k of the angles: (k / k₂)², at most 1, where k₂ = [`LINE_YARNS`] / 2
+/// is the harmonic two yarn lengths long.
+///
+/// A wave longer than two yarns does not bend the yarn it passes: it turns the whole yarn about
+/// the pole, one way and then the other, and a flag swung so is a board, not cloth. Real flags
+/// carry waves of about 1.9 lengths and are held toward the wind by its drag. Table 1's bands
+/// that start at 1 (the flapping non-frozen banner, the fluttering non-frozen curtain) put most
+/// of a 1/f^β spectrum's energy in those tilts: the banner's free edge swung by 0.31–0.42 L,
+/// where every other row swings by at most 0.25 L. Weighted so, the band keeps its harmonics
+/// (a wave of 5 yarns keeps 16 % of its amplitude, one of 2.5 yarns 64 %) and step 2 rescales
+/// the sheet to the row's θ, which moves the spread into the waves that bend the cloth.
+fn tilt_weight(k: usize) -> f32 {
+    let two_yarns = LINE_YARNS as f32 / 2.0;
+    (k as f32 / two_yarns).min(1.0).powi(2)
+}
+
 /// Unit segment directions for every (frame, row, column) of a noise sheet, in the yarn plane:
 /// x along the stream, y across it.
 #[derive(Clone, Debug)]
@@ -66,16 +82,14 @@ impl LineTransforms {
         }
     }
 
-    /// Transforms `buffer`, keeps harmonic k where `keep(k)` (k and n − k together), and
-    /// transforms back (scaled by n).
-    fn filter(&mut self, keep: impl Fn(usize) -> bool) {
+    /// Transforms `buffer`, scales harmonic k by `weight(k)` (k and n − k together; 0 drops
+    /// it), and transforms back (scaled by n).
+    fn filter(&mut self, weight: impl Fn(usize) -> f32) {
         let n = self.buffer.len();
         self.forward
             .process_with_scratch(&mut self.buffer, &mut self.scratch);
         for (k, s) in self.buffer.iter_mut().enumerate() {
-            if !keep(k.min(n - k)) {
-                *s = Complex::new(0.0, 0.0);
-            }
+            *s *= weight(k.min(n - k));
         }
         self.inverse
             .process_with_scratch(&mut self.buffer, &mut self.scratch);
@@ -90,13 +104,15 @@ impl DirectionSheet {
         let lines = frames * rows;
         let mut transforms = LineTransforms::new(columns);
         let band = |k: usize| k > 0 && filter.keeps(k, columns);
-        // 1. Band-limit the angles along each line (the noise's S(k), §3.1).
+        // 1. Band-limit the angles along each line (the noise's S(k), §3.1), the waves longer
+        //    than two yarns weighted down (`tilt_weight`).
+        let weight = |k: usize| if band(k) { tilt_weight(k) } else { 0.0 };
         let mut angles = vec![0.0f32; lines * columns];
         for (line, out) in angles.chunks_exact_mut(columns).enumerate() {
             for (b, v) in transforms.buffer.iter_mut().zip(noise.line(line)) {
                 *b = Complex::new(*v, 0.0);
             }
-            transforms.filter(band);
+            transforms.filter(weight);
             for (o, b) in out.iter_mut().zip(&transforms.buffer) {
                 *o = b.re;
             }
@@ -121,7 +137,7 @@ impl DirectionSheet {
                 let (sin, cos) = (a * scale).clamp(-amplitude, amplitude).sin_cos();
                 *b = Complex::new(cos, sin);
             }
-            transforms.filter(|k| k == 0 || band(k));
+            transforms.filter(|k| if k == 0 || band(k) { 1.0 } else { 0.0 });
             let mean: Complex<f32> = transforms.buffer.iter().sum();
             let turn = if mean.norm() > 1e-12 {
                 mean.conj() / mean.norm()

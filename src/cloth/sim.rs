@@ -10,7 +10,7 @@ use std::f32::consts::PI;
 
 use bevy::math::{Vec2, Vec3};
 
-use super::constraints::{align_to_leading_yarn, pole_edge};
+use super::constraints::{align_to_leading_yarn, pole_hem};
 use super::directions::{CELLS_PER_YARN, ColumnTap, DirectionSheet, LINE_YARNS};
 use super::noise::NoiseSheet;
 use super::params::{ClothError, ClothGrid, ClothParams, ClothWindModel};
@@ -100,6 +100,8 @@ pub struct ClothSim {
     /// wind's gain).
     keep: Vec<f32>,
     taps: Vec<ColumnTap>,
+    /// The pole edge's nodes (eq. 8, a hem of fixed length).
+    hem: Vec<Vec3>,
 }
 
 impl Default for ClothSim {
@@ -170,6 +172,7 @@ impl ClothSim {
             droop: vec![Vec2::X; segments],
             keep: vec![1.0; segments],
             taps: Vec::with_capacity(segments),
+            hem: Vec::with_capacity(grid.rows),
         };
         sim.rebuild();
         Ok(sim)
@@ -311,16 +314,15 @@ impl ClothSim {
             self.sheet
                 .column_taps(middle - along, step * n as f64, coarse, &mut self.taps);
         }
+        pole_hem(
+            rows,
+            spacing,
+            self.params.bow * strength.gain * self.grid.height,
+            self.params.lean * strength.gain * self.grid.height,
+            &mut self.hem,
+        );
         let edge = |k: usize| match self.attachment {
-            ClothAttachment::Pole => {
-                let edge = pole_edge(
-                    k,
-                    rows,
-                    self.params.bow * strength.gain * self.grid.height,
-                    self.params.lean * strength.gain * self.grid.height,
-                );
-                Vec3::new(edge.x, -(k as f32) * spacing, edge.y)
-            }
+            ClothAttachment::Pole => self.hem[k],
             ClothAttachment::Rod => Vec3::new(k as f32 * spacing, 0.0, 0.0),
         };
         // Traced yarns: every n-th and the last.

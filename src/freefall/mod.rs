@@ -44,6 +44,7 @@ mod presets;
 mod random;
 mod regime;
 mod release;
+mod series;
 mod tiers;
 mod tilt;
 

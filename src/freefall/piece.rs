@@ -16,6 +16,7 @@ use bevy::math::{Quat, Vec2, Vec3};
 use super::database::{SEGMENT_SAMPLES, TrajectoryDatabase};
 use super::motion::{CHAOTIC_MIN_TIME, CHAOTIC_SCALE, FallScales, Glide, MOTION_SHAPES};
 use super::regime::PrimitiveMotion;
+use super::series::sin_cos_small;
 
 /// A stretch of still-fluid motion, evaluated relative to its start.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,6 +41,9 @@ pub(crate) enum Piece {
         turn: f32,
         /// (cos θ₀/2, sin θ₀/2).
         start_half: Vec2,
+        /// Added to the profile's progress as `ease` s (1 − s)²: the swing starts turning at
+        /// the rate the last piece ended with (C¹ joins), ends as its profile does.
+        ease: f32,
     },
     /// Eq. 6 from curve time `start`.
     Curve {
@@ -78,6 +82,9 @@ pub(crate) struct SwingChoice {
     pub theta: f32,
     /// [`FallScales::tumble_survival`] in the current wind (1 in still fluid).
     pub survival: f32,
+    /// The rate the plate turns at when the swing starts ([`Piece::end_rate`] of the last),
+    /// rad/s.
+    pub rate: f32,
 }
 
 impl SwingChoice {
@@ -126,16 +133,32 @@ impl Piece {
         let (sin, cos) = (0.5 * theta).sin_cos();
         let sideways = if tumble { choice.survival } else { 1.0 };
         let swings = choice.swings(tumble);
+        let duration = (swings * scales.swing_time()).max(MIN_PIECE);
+        // The start slope (progress per unit of s) the last piece's rate asks for, against the
+        // profile's own, as far as the plate stays between its start and end angles.
+        let shape = if tumble {
+            db.tumble_shape()
+        } else {
+            &db.segment(segment).angle_shape
+        };
+        let turn = end - theta;
+        let wanted = choice.rate * duration / turn;
+        let ease = if wanted.is_finite() && turn.abs() > 1e-3 {
+            ease_toward(shape, wanted)
+        } else {
+            0.0
+        };
         Self::Swing {
             segment,
             sign,
             scale: swings * unit,
             sideways,
-            duration: (swings * scales.swing_time()).max(MIN_PIECE),
+            duration,
             tumble,
             theta0: theta,
-            turn: end - theta,
+            turn,
             start_half: Vec2::new(cos, sin),
+            ease,
         }
     }
 
@@ -182,6 +205,7 @@ impl Piece {
                 tumble,
                 turn,
                 start_half,
+                ease,
                 ..
             } => {
                 let seg = db.segment(segment);
@@ -200,7 +224,9 @@ impl Piece {
                 } else {
                     &seg.angle_shape
                 };
-                let progress = shape[i] + (shape[i + 1] - shape[i]) * f;
+                let u = s.clamp(0.0, 1.0);
+                let progress =
+                    shape[i] + (shape[i + 1] - shape[i]) * f + ease * u * (1.0 - u).powi(2);
                 let offset = Vec3::new(sign * p.x * scale * sideways, p.y * scale, 0.0);
                 (offset, rotation_z(start_half, turn * progress))
             }
@@ -273,6 +299,28 @@ impl Piece {
         }
     }
 
+    /// The rate the plate turns at when the piece ends, rad/s about the heading frame's z (a
+    /// curve only leans: 0).
+    pub fn end_rate(&self, db: &TrajectoryDatabase) -> f32 {
+        let Self::Swing {
+            segment,
+            tumble,
+            turn,
+            duration,
+            ..
+        } = *self
+        else {
+            return 0.0;
+        };
+        let shape = if tumble {
+            db.tumble_shape()
+        } else {
+            &db.segment(segment).angle_shape
+        };
+        let last = SEGMENT_SAMPLES - 1;
+        turn * (shape[last] - shape[last - 1]) * last as f32 / duration
+    }
+
     /// Plate angle at the end, about the heading frame's z (for a curve: its half-turns).
     pub fn end_angle(&self) -> f32 {
         match *self {
@@ -280,6 +328,23 @@ impl Piece {
             Self::Curve { flip, .. } => flip,
         }
     }
+}
+
+/// The `ease` of [`Piece::Swing`] that starts `shape` (progress 0 → 1 over s ∈ [0, 1]) at slope
+/// `wanted`, limited so that shape(s) + ease s (1 − s)² stays within [−¼, 1¼] at every sample:
+/// the swing takes up the last piece's rate, turning past its start angle (a plate still turning
+/// the other way, slowing before it reverses) or its end angle by at most a quarter of its turn.
+fn ease_toward(shape: &[f32; SEGMENT_SAMPLES], wanted: f32) -> f32 {
+    const OVERSHOOT: f32 = 0.25;
+    let last = (SEGMENT_SAMPLES - 1) as f32;
+    let (mut low, mut high) = (f32::NEG_INFINITY, f32::INFINITY);
+    for (i, p) in shape.iter().enumerate().take(SEGMENT_SAMPLES - 1).skip(1) {
+        let s = i as f32 / last;
+        let bump = s * (1.0 - s) * (1.0 - s);
+        low = low.max((-OVERSHOOT - p) / bump);
+        high = high.min((1.0 + OVERSHOOT - p) / bump);
+    }
+    (wanted - (shape[1] - shape[0]) * last).clamp(low.min(0.0), high.max(0.0))
 }
 
 /// Shortest piece, s: keeps the piece loop finite for any input.
@@ -292,147 +357,6 @@ fn rotation_z(start_half: Vec2, phi: f32) -> Quat {
     Quat::from_xyzw(0.0, 0.0, s0 * c + c0 * s, c0 * c - s0 * s)
 }
 
-/// sin and cos of |x| ≤ π by their Taylor series to x¹⁴ (error < 3e-5 at π, < 1e-6 below 2):
-/// no range reduction and no library call on the per-object hot path. Larger |x| falls back to
-/// the library.
-pub(crate) fn sin_cos_small(x: f32) -> (f32, f32) {
-    if x.is_nan() || x.abs() > PI {
-        return x.sin_cos();
-    }
-    // Horner form with the factorials' reciprocals as constants (multiplications only).
-    const S: [f32; 6] = [
-        1.0 / 6.0,
-        1.0 / 120.0,
-        1.0 / 5040.0,
-        1.0 / 362_880.0,
-        1.0 / 39_916_800.0,
-        1.0 / 6_227_020_800.0,
-    ];
-    const C: [f32; 7] = [
-        1.0 / 2.0,
-        1.0 / 24.0,
-        1.0 / 720.0,
-        1.0 / 40_320.0,
-        1.0 / 3_628_800.0,
-        1.0 / 479_001_600.0,
-        1.0 / 87_178_291_200.0,
-    ];
-    let x2 = x * x;
-    let sin =
-        x * (1.0 - x2 * (S[0] - x2 * (S[1] - x2 * (S[2] - x2 * (S[3] - x2 * (S[4] - x2 * S[5]))))));
-    let cos = 1.0
-        - x2 * (C[0]
-            - x2 * (C[1] - x2 * (C[2] - x2 * (C[3] - x2 * (C[4] - x2 * (C[5] - x2 * C[6]))))));
-    (sin, cos)
-}
-
 #[cfg(test)]
-mod tests {
-    use std::f32::consts::PI;
-
-    use bevy::math::Vec2;
-
-    use super::*;
-    use crate::freefall::database::TrajectoryDatabase;
-    use crate::freefall::motion::Glide;
-    use crate::freefall::object::FallingObject;
-    use crate::freefall::random::FallRng;
-    use crate::freefall::regime::PrimitiveMotion;
-
-    #[test]
-    fn two_picks_of_the_search_tree_give_different_swings() {
-        let db = TrajectoryDatabase::default();
-        let object = FallingObject::default();
-        let scales = object.scales(&object.regime().unwrap());
-        let mut rng = FallRng::new(1);
-        let choice = SwingChoice {
-            glide: Glide::Right,
-            same_side: false,
-            r: 1.0,
-            theta: 0.0,
-            survival: 1.0,
-        };
-        // What a swing shows: its sideways glide, the plate's turn, and how unevenly it drops.
-        let measure = |segment: u32| {
-            let piece = Piece::swing(&db, &scales, segment, choice);
-            let d = piece.duration();
-            let end = piece.offset(&db, d);
-            let turn = piece.tilt(&db, 0.0).angle_between(piece.tilt(&db, d));
-            let drops: Vec<f32> = (0..8)
-                .map(|i| {
-                    let (a, b) = (i as f32 * d / 8.0, (i + 1) as f32 * d / 8.0);
-                    piece.offset(&db, a).y - piece.offset(&db, b).y
-                })
-                .collect();
-            let unevenness = drops.iter().fold(0.0f32, |m, x| m.max(*x))
-                / drops.iter().fold(f32::INFINITY, |m, x| m.min(*x));
-            (end.x, turn, unevenness)
-        };
-        // Narrow and wide keys find different clusters: glides differ severalfold.
-        let a0 = scales.amplitude(PrimitiveMotion::Fluttering);
-        let narrow = db.find(&scales.swing_key(0.4 * a0, 1.0), &mut rng);
-        let wide = db.find(&scales.swing_key(10.0 * a0, 1.0), &mut rng);
-        let (a, b) = (measure(narrow), measure(wide));
-        assert!(b.0 > 4.0 * a.0, "glides {} and {}", a.0, b.0);
-        // Within one cluster, members differ in what P¹ − P⁰ does not show: the plate's turn or
-        // the descent's modulation.
-        let cluster = db.nearest_cluster(&scales.swing_key(2.0 * a0, 1.0));
-        let members: Vec<_> = db.members()[cluster].iter().map(|&s| measure(s)).collect();
-        let spread = |f: fn(&(f32, f32, f32)) -> f32| {
-            let lo = members.iter().map(f).fold(f32::INFINITY, f32::min);
-            let hi = members.iter().map(f).fold(0.0f32, f32::max);
-            hi / lo
-        };
-        assert!(
-            spread(|m| m.1) > 1.3 || spread(|m| m.2) > 1.3,
-            "turns ×{} unevenness ×{}",
-            spread(|m| m.1),
-            spread(|m| m.2)
-        );
-    }
-
-    #[test]
-    fn curve_velocity_is_the_derivative_of_eq_6() {
-        let piece = |eccentricity| Piece::Curve {
-            amplitude: 0.05,
-            eccentricity,
-            lobes: 3.0,
-            rate: 7.0,
-            descent: 0.4,
-            start: 0.0,
-            duration: 1.0,
-            flip: 0.0,
-        };
-        let lobed = piece(0.3);
-        for tau in [0.1f32, 0.37, 1.2] {
-            let h = 1e-3;
-            let (ahead, behind) = (lobed.curve_motion(tau + h).0, lobed.curve_motion(tau - h).0);
-            let difference = (ahead - behind) / (2.0 * h);
-            let velocity = lobed.curve_motion(tau).1;
-            assert!(
-                (difference - velocity).length() < 2e-3 * velocity.length(),
-                "{tau}: {difference} vs {velocity}"
-            );
-        }
-        // A circle (ε = 0) is swept at A Ω whenever it is, long into a fall too.
-        let circle = piece(0.0);
-        for tau in [0.2f32, 50.0, 500.0] {
-            let v = circle.curve_motion(tau).1;
-            let speed = Vec2::new(v.x, v.z).length();
-            assert!((speed - 0.05 * 7.0).abs() < 1e-5, "{tau}: {speed}");
-            assert_eq!(v.y, -0.4);
-        }
-    }
-
-    #[test]
-    fn small_angle_series_is_accurate() {
-        for i in 0..=2000 {
-            let x = -PI + std::f32::consts::TAU * i as f32 / 2000.0;
-            let (s, c) = sin_cos_small(x);
-            assert!(
-                (s - x.sin()).abs() < 3e-5 && (c - x.cos()).abs() < 3e-5,
-                "{x}"
-            );
-        }
-    }
-}
+#[path = "piece_tests.rs"]
+mod tests;

@@ -4,7 +4,7 @@ use std::f32::consts::PI;
 
 use bevy::math::{Quat, Vec3};
 
-use super::piece::sin_cos_small;
+use super::series::sin_cos_small;
 
 /// How the wind turns the object (eq. 15): θ = W N(t), leaning downwind. The paper's N(t) is
 /// the fBm wind speed |u|; as an angle factor it must be bounded, so N = x / (1 + x) with

@@ -36,6 +36,19 @@ pub fn ready(app: &mut App) {
     app.update();
 }
 
+/// A Markov chain that starts in `motion` and stays there.
+pub fn only(
+    motion: bevy_windfall::freefall::PrimitiveMotion,
+) -> bevy_windfall::freefall::MarkovChain {
+    let mut initial = [0.0; 6];
+    initial[motion.index()] = 1.0;
+    let mut transitions = [[0.0; 6]; 6];
+    for (i, row) in transitions.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    bevy_windfall::freefall::MarkovChain::new(initial, transitions).unwrap()
+}
+
 /// The free-fall paper's coin: aluminium, radius 1.0 cm, 1.5 mm thick, in water.
 pub fn paper_coin() -> bevy_windfall::freefall::FallingObject {
     use bevy_windfall::freefall::{FallingObject, Fluid, Shape};

@@ -72,6 +72,7 @@ impl FallPath {
                 r,
                 theta,
                 survival,
+                rate: old.map_or(0.0, |p| p.end_rate(db)),
             };
             // The search key (§2.3.1): the glide to the next turning point, r A₀ to the other
             // side of the centre (A_e = r A₀), or on by 2 r A₀ for a half-turn, which drifts.
