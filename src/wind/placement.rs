@@ -2,6 +2,7 @@
 //! [`WindShelter`](super::shelter::WindShelter)) stands for one fixed step: its origin and rotation taken
 //! from its entity's world transform, its scale ignored. Sources and shelters share it.
 
+use super::error::{WindError, check};
 use crate::guard::MAX_COORDINATE;
 use bevy::math::{Quat, Vec3A};
 
@@ -27,6 +28,13 @@ impl Placement {
             to_local: rotation.inverse(),
         })
     }
+}
+
+/// `Ok` for a size in [0, `MAX_COORDINATE`], otherwise an error naming `field`: what the `try_`
+/// constructors of sources and shelters refuse.
+pub(crate) fn check_size(field: &'static str, value: f32) -> Result<(), WindError> {
+    let ok = (0.0..=MAX_COORDINATE).contains(&value) && value.is_finite();
+    check(ok, field, value, "must be finite, ≥ 0 and ≤ MAX_COORDINATE")
 }
 
 /// The fade (1 − s²)², 1 at s = 0, 0 with zero slope at |s| ≥ 1: how a source's velocity and a

@@ -1,7 +1,7 @@
 //! Shelter: [`WindShelter`] boxes that calm the global wind in their lee (a wall, a hedge, a
 //! house) or inside them (a room).
 
-use super::placement::{Placement, fade, size};
+use super::placement::{Placement, check_size, fade, size};
 use bevy::ecs::component::Component;
 use bevy::ecs::reflect::ReflectComponent;
 use bevy::math::{Quat, Vec3, Vec3A};
@@ -124,6 +124,32 @@ impl WindShelter {
             half_extents: half_extents.map(size),
         }
     }
+
+    /// [`Self::wall`], refusing half extents that are negative, not finite or above
+    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE) (as the sources' `try_` constructors
+    /// refuse their sizes).
+    ///
+    /// # Errors
+    /// The first bad side, named (`half_extents.x`, `.y` or `.z`).
+    pub fn try_wall(half_extents: Vec3) -> Result<Self, WindError> {
+        check_extents(half_extents)?;
+        Ok(Self::wall(half_extents))
+    }
+
+    /// [`Self::indoor`], refusing half extents as [`Self::try_wall`] does.
+    ///
+    /// # Errors
+    /// The first bad side, named (`half_extents.x`, `.y` or `.z`).
+    pub fn try_indoor(half_extents: Vec3) -> Result<Self, WindError> {
+        check_extents(half_extents)?;
+        Ok(Self::indoor(half_extents))
+    }
+}
+
+fn check_extents(h: Vec3) -> Result<(), WindError> {
+    check_size("half_extents.x", h.x)?;
+    check_size("half_extents.y", h.y)?;
+    check_size("half_extents.z", h.z)
 }
 
 /// The width of the transition at a room's walls, m.

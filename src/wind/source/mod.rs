@@ -14,7 +14,7 @@ use bevy::transform::components::Transform;
 use std::f32::consts::FRAC_PI_2;
 
 use super::error::WindError;
-use super::placement::size;
+use super::placement::{check_size, size};
 use super::pulse::Pulse;
 use crate::guard::MAX_COORDINATE;
 
@@ -129,12 +129,6 @@ impl Default for WindSource {
 /// A finite value or 0.
 fn finite(v: f32) -> f32 {
     if v.is_finite() { v } else { 0.0 }
-}
-
-/// `Ok` for a size in [0, `MAX_COORDINATE`], otherwise an error naming `field`.
-fn check_size(field: &'static str, value: f32) -> Result<(), WindError> {
-    let ok = (0.0..=MAX_COORDINATE).contains(&value);
-    check(field, value, ok, "must be finite, ≥ 0 and ≤ MAX_COORDINATE")
 }
 
 /// `Ok` for a finite `value` that is `ok`, otherwise an error naming `field`.
