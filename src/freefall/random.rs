@@ -19,16 +19,11 @@ impl FallRng {
         (self.0.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
     }
 
-    /// Standard normal by Marsaglia's polar method (the Box–Muller family the paper names).
+    /// Standard normal, by the crate's one sampler: the spectra's portable ziggurat
+    /// (Marsaglia & Tsang 2000; the paper names Box–Muller, whose distribution it draws).
     pub fn normal(&mut self) -> f32 {
-        loop {
-            let x = 2.0 * self.uniform() - 1.0;
-            let y = 2.0 * self.uniform() - 1.0;
-            let s = x * x + y * y;
-            if s > 0.0 && s < 1.0 {
-                return x * libm::sqrtf(-2.0 * libm::logf(s) / s);
-            }
-        }
+        let bits = self.0.next_u32();
+        crate::spectrum::standard_normal(bits, &mut self.0)
     }
 
     /// 64 uniform bits (a seed for a new stream).

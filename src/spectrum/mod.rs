@@ -27,6 +27,8 @@ mod error;
 mod fft;
 mod grid;
 mod normal;
+
+pub(crate) use normal::standard_normal;
 mod sample;
 mod synth;
 

@@ -13,7 +13,7 @@
 
 use std::sync::LazyLock;
 
-use rand::{RngExt, SeedableRng};
+use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rustfft::num_complex::Complex;
 
@@ -65,82 +65,82 @@ static TABLES: LazyLock<Tables> = LazyLock::new(|| {
 /// Standard complex normals `X + iY` (X, Y independent standard normal) from a PCG stream.
 pub(crate) struct NormalPairs {
     rng: Pcg64,
-    tables: &'static Tables,
 }
 
 impl NormalPairs {
     pub(crate) fn new(seed: u64) -> Self {
         Self {
             rng: Pcg64::seed_from_u64(seed),
-            tables: &TABLES,
         }
     }
 
     pub(crate) fn next_pair(&mut self) -> Complex<f32> {
-        let bits = self.rng.random::<u64>();
-        let re = self.attempt((bits >> 32) as u32);
-        let im = self.attempt(bits as u32);
+        let bits = self.rng.next_u64();
+        let re = standard_normal((bits >> 32) as u32, &mut self.rng);
+        let im = standard_normal(bits as u32, &mut self.rng);
         Complex::new(re, im)
     }
+}
 
-    /// One normal from 32 bits, drawing more only on the slow path.
-    #[inline]
-    fn attempt(&mut self, bits: u32) -> f32 {
+/// One standard normal: a first attempt from the 32 bits `bits`, drawing more from `rng` only
+/// on the slow path. The crate's one normal sampler: the spectra's pairs (from PCG64) and the
+/// falls' Gaussian spreads (from [`FallRng`](crate::freefall::FallRng), PCG32) both use it.
+#[inline]
+pub(crate) fn standard_normal<R: Rng>(bits: u32, rng: &mut R) -> f32 {
+    let t: &Tables = &TABLES;
+    let layer = (bits & 0x7F) as usize;
+    let position = bits >> 8;
+    if position < t.inside[layer] {
+        let x = position as f32 * t.scale[layer];
+        return if bits & 0x80 != 0 { -x } else { x };
+    }
+    slow(t, bits, rng)
+}
+
+#[cold]
+fn slow<R: Rng>(t: &Tables, mut bits: u32, rng: &mut R) -> f32 {
+    loop {
         let layer = (bits & 0x7F) as usize;
         let position = bits >> 8;
-        if position < self.tables.inside[layer] {
-            let x = position as f32 * self.tables.scale[layer];
-            return if bits & 0x80 != 0 { -x } else { x };
-        }
-        self.slow(bits)
-    }
-
-    #[cold]
-    fn slow(&mut self, mut bits: u32) -> f32 {
-        let t = self.tables;
-        loop {
-            let layer = (bits & 0x7F) as usize;
-            let position = bits >> 8;
-            let negative = bits & 0x80 != 0;
-            let x = if position < t.inside[layer] {
-                position as f32 * t.scale[layer]
-            } else if layer == 0 {
-                self.tail()
-            } else {
-                // In the wedge between x_{i+1} and x_i: accept under the curve.
-                let x = position as f32 * t.scale[layer];
-                let y = t.height[layer] + self.uniform() * (t.height[layer + 1] - t.height[layer]);
-                if y >= libm::expf(-0.5 * x * x) {
-                    bits = self.rng.random::<u32>();
-                    continue;
-                }
-                x
-            };
-            return if negative { -x } else { x };
-        }
-    }
-
-    /// Marsaglia's tail beyond `TAIL_START`.
-    fn tail(&mut self) -> f32 {
-        let r = TAIL_START as f32;
-        loop {
-            let a = -libm::logf(self.open_uniform()) / r;
-            let b = -libm::logf(self.open_uniform());
-            if b + b >= a * a {
-                return r + a;
+        let negative = bits & 0x80 != 0;
+        let x = if position < t.inside[layer] {
+            position as f32 * t.scale[layer]
+        } else if layer == 0 {
+            tail(rng)
+        } else {
+            // In the wedge between x_{i+1} and x_i: accept under the curve.
+            let x = position as f32 * t.scale[layer];
+            let y = t.height[layer] + uniform(rng) * (t.height[layer + 1] - t.height[layer]);
+            if y >= libm::expf(-0.5 * x * x) {
+                bits = rng.next_u32();
+                continue;
             }
+            x
+        };
+        return if negative { -x } else { x };
+    }
+}
+
+/// Marsaglia's tail beyond `TAIL_START`.
+fn tail<R: Rng>(rng: &mut R) -> f32 {
+    let r = TAIL_START as f32;
+    loop {
+        let a = -libm::logf(open_uniform(rng)) / r;
+        let b = -libm::logf(open_uniform(rng));
+        if b + b >= a * a {
+            return r + a;
         }
     }
+}
 
-    /// Uniform in [0, 1) with 24 bits.
-    fn uniform(&mut self) -> f32 {
-        (self.rng.random::<u32>() >> 8) as f32 * (1.0 / POSITION_ONE as f32)
-    }
+/// Uniform in [0, 1) with 24 bits.
+fn uniform<R: Rng>(rng: &mut R) -> f32 {
+    (rng.next_u32() >> 8) as f32 * (1.0 / POSITION_ONE as f32)
+}
 
-    /// Uniform in (0, 1] with 24 bits.
-    fn open_uniform(&mut self) -> f32 {
-        ((self.rng.random::<u32>() >> 8) + 1) as f32 * (1.0 / POSITION_ONE as f32)
-    }
+/// Uniform in (0, 1] with 24 bits.
+fn open_uniform<R: Rng>(rng: &mut R) -> f32 {
+    ((rng.next_u32() >> 8) + 1) as f32 * (1.0 / POSITION_ONE as f32)
 }
 
 #[cfg(test)]

@@ -322,6 +322,10 @@ impl FallPath {
             let mut inc = end - self.piece_offset;
             self.piece_offset = end;
             self.piece_tilt = tilt;
+            // The swings go round the synthesis' own sideways position, not the blended one:
+            // the pieces then do not depend on the step (a leaf stepped every fourth step
+            // picks the same swings).
+            self.lateral += inc.x;
             if let Some(old) = self.previous.as_mut() {
                 let w = smoothstep((old.elapsed + 0.5 * h) / old.length);
                 let old_end = old.piece.offset(db, old.time + h);
@@ -333,7 +337,6 @@ impl FallPath {
                     self.previous = None;
                 }
             }
-            self.lateral += inc.x;
             delta += self.turned(inc);
             self.piece_time += h;
             remaining -= h;

@@ -16,7 +16,6 @@ use std::f32::consts::FRAC_PI_2;
 use super::error::WindError;
 use super::placement::{check_size, size};
 use super::pulse::Pulse;
-use crate::guard::MAX_COORDINATE;
 
 /// What a [`WindSource`] blows, in metres and m/s.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -77,7 +76,7 @@ pub enum SourceShape {
 /// parented); its scale is ignored: sizes are in metres.
 ///
 /// The plain constructors never fail: a non-finite number becomes 0, a negative size 0, a size
-/// beyond [`MAX_COORDINATE`] is held there and an angle is clamped to its range, so a bad
+/// beyond [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE) is held there and an angle is clamped to its range, so a bad
 /// argument gives a source that blows nothing rather than NaN. The `try_` constructors return a
 /// [`WindError`] naming the argument instead. A source whose public fields are set by hand to a
 /// number that is not finite blows nothing and gets a [`WindSourceInvalid`]; one source never
@@ -168,7 +167,7 @@ impl WindSource {
     }
 
     /// [`Self::sphere`], refusing a `radius` that is negative, not finite or above
-    /// [`MAX_COORDINATE`], or a non-finite `velocity`.
+    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), or a non-finite `velocity`.
     pub fn try_sphere(radius: f32, velocity: Vec3) -> Result<Self, WindError> {
         check_size("radius", radius)?;
         let largest = velocity.abs().max_element();
@@ -189,7 +188,7 @@ impl WindSource {
     }
 
     /// [`Self::fan`], refusing a `range` that is negative, not finite or above
-    /// [`MAX_COORDINATE`], a `half_angle` outside
+    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), a `half_angle` outside
     /// [0, π/2] or a non-finite `speed`.
     pub fn try_fan(range: f32, half_angle: f32, speed: f32) -> Result<Self, WindError> {
         check_size("range", range)?;
@@ -217,7 +216,7 @@ impl WindSource {
     }
 
     /// [`Self::vortex`], refusing a `radius` that is negative, not finite or above
-    /// [`MAX_COORDINATE`], or a non-finite `peak_speed`.
+    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), or a non-finite `peak_speed`.
     pub fn try_vortex(radius: f32, peak_speed: f32) -> Result<Self, WindError> {
         check_size("radius", radius)?;
         check("peak_speed", peak_speed, true, "must be finite")?;
@@ -262,7 +261,7 @@ impl WindSource {
     }
 
     /// [`Self::gust`], refusing a non-finite `strength`, a negative or non-finite
-    /// `front_speed`, or sizes that are negative, not finite or above [`MAX_COORDINATE`].
+    /// `front_speed`, or sizes that are negative, not finite or above [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE).
     pub fn try_gust(
         strength: f32,
         front_speed: f32,
@@ -278,7 +277,7 @@ impl WindSource {
     }
 
     /// [`Self::blast`], refusing negative or non-finite arguments and a `radius` above
-    /// [`MAX_COORDINATE`].
+    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE).
     pub fn try_blast(peak_speed: f32, front_speed: f32, radius: f32) -> Result<Self, WindError> {
         let reason = "must be finite and ≥ 0";
         check("peak_speed", peak_speed, peak_speed >= 0.0, reason)?;
