@@ -10,8 +10,7 @@ use std::time::Duration;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_windfall::freefall::{
-    FallLod, FallModel, FallPath, FallState, FallingObject, FreeFallPlugin, FreeFallSettings,
-    WindTilt,
+    FallLod, FallModel, FallPath, FallPlugin, FallSettings, FallState, FallingObject, WindTilt,
 };
 use bevy_windfall::lod::LodFocus;
 use bevy_windfall::wind::{WindConfig, WindField, WindPlugin};
@@ -70,8 +69,8 @@ fn falling_app_of(objects: usize, lod: bool, wind: bool) -> App {
     app.add_plugins((MinimalPlugins, TransformPlugin))
         .insert_resource(Time::<Fixed>::from_seconds(f64::from(DT)))
         .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-        .add_plugins(FreeFallPlugin::default())
-        .insert_resource(FreeFallSettings {
+        .add_plugins(FallPlugin::default())
+        .insert_resource(FallSettings {
             // Far below (within the ±1e7 m a ground may be): every object falls for the whole
             // run.
             ground_height: -1.0e6,

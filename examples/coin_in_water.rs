@@ -64,7 +64,7 @@ fn setup(
     ));
     // The coin lies flat, as it is held before the drop; it rests on the floor (its half
     // thickness up).
-    commands.insert_resource(FreeFallSettings {
+    commands.insert_resource(FallSettings {
         ground_height: 0.00075,
     });
     commands.spawn((

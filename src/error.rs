@@ -5,7 +5,7 @@ use bevy::reflect::Reflect;
 use thiserror::Error;
 
 /// A number outside its valid range: the field it was given for, the value, and what it must
-/// be. Every domain error (`WindError`, `FreeFallError`, `ClothError`, `AeroError`) has an
+/// be. Every domain error (`WindError`, `FallError`, `ClothError`, `AeroError`) has an
 /// `Invalid(InvalidValue)` variant, so one `match` arm reads all of them; `LodInvalid` holds one
 /// directly.
 ///

@@ -169,7 +169,7 @@
 //! # Errors
 //!
 //! A bad value is a typed error that names the field: constructors return
-//! [`WindError`](wind::WindError), [`FreeFallError`](freefall::FreeFallError),
+//! [`WindError`](wind::WindError), [`FallError`](freefall::FallError),
 //! [`ClothError`](cloth::ClothError), [`AeroError`](aero::AeroError) or
 //! [`SpectrumError`](spectrum::SpectrumError). Validation checks what is used (the log ratio
 //! ln(h/z0), the unit direction, the node mass), not only the raw fields, and every allocation
@@ -268,9 +268,11 @@ pub mod prelude {
         Cloth, ClothAttachment, ClothGrid, ClothParams, ClothPlugin, ClothPreset, ClothState,
     };
     pub use crate::freefall::{
-        FallPreset, FallState, FallingObject, Fluid, FreeFallPlugin, FreeFallSettings, Landed,
-        LeafCloud, LeafCloudPlugin, PrimitiveMotion, Shape,
+        FallPlugin, FallPreset, FallSettings, FallState, FallingObject, Fluid, Landed, LeafCloud,
+        LeafCloudPlugin, PrimitiveMotion, Shape,
     };
+    #[allow(deprecated)]
+    pub use crate::freefall::{FreeFallPlugin, FreeFallSettings};
     pub use crate::lod::{LodFocus, LodView};
     pub use crate::spectrum::fbm;
     pub use crate::wind::{

@@ -53,7 +53,7 @@ impl PluginGroup for WindfallPlugins {
                 schedule: s,
                 ..Default::default()
             })
-            .add(freefall::FreeFallPlugin { schedule: s })
+            .add(freefall::FallPlugin { schedule: s })
             .add(freefall::LeafCloudPlugin { schedule: s })
             .add(aero::AeroPlugin { schedule: s })
             .add(cloth::ClothPlugin { schedule: s });

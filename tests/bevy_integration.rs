@@ -87,7 +87,7 @@ fn every_user_facing_type_is_reflected_and_registered() {
             "{name}: ReflectDefault"
         );
     }
-    for name in ["WindSettings", "FreeFallSettings"] {
+    for name in ["WindSettings", "FallSettings"] {
         let r = registry
             .get_with_short_type_path(name)
             .unwrap_or_else(|| panic!("{name} is not registered"));
@@ -415,7 +415,7 @@ fn single_plugins_take_their_schedule_in_any_order() {
     // The group's constructor returns the group itself.
     let _: WindfallPlugins = WindfallPlugins::new(Update);
     let mut app = frames_of_40_ms((
-        FreeFallPlugin::new(Update),
+        FallPlugin::new(Update),
         WindPlugin::default().in_schedule(Update),
     ));
     assert_eq!(

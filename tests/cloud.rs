@@ -300,8 +300,8 @@ fn cloud_app(description: LeafCloud, wind: Option<WindConfig>) -> (App, Entity) 
         config: wind,
         ..default()
     })
-    .add_plugins((FreeFallPlugin::default(), LeafCloudPlugin::default()))
-    .insert_resource(FreeFallSettings { ground_height: 0.0 });
+    .add_plugins((FallPlugin::default(), LeafCloudPlugin::default()))
+    .insert_resource(FallSettings { ground_height: 0.0 });
     let entity = app.world_mut().spawn(description).id();
     ready(&mut app);
     (app, entity)
@@ -532,7 +532,7 @@ fn hostile_clouds_are_refused_by_name_or_stay_finite() {
                 value,
                 fields,
                 description.leaves(&model, 0.0),
-                FreeFallError::field,
+                FallError::field,
                 |mut leaves| {
                     for dt in [DT, 30.0, DT] {
                         let step = step_in(&model, Some(&wind), dt, Some(Vec3::ZERO));

@@ -149,7 +149,7 @@ fn lighter_than_fluid_and_bad_sizes_are_typed_errors() {
     let mut cork = coin();
     cork.density = 240.0;
     let e = cork.regime().unwrap_err();
-    assert!(matches!(e, FreeFallError::LighterThanFluid { .. }));
+    assert!(matches!(e, FallError::LighterThanFluid { .. }));
     assert_eq!(e.field(), "density");
     let cases: Vec<(FallingObject, &str)> = vec![
         (

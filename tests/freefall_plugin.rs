@@ -1,4 +1,4 @@
-//! FreeFallPlugin in a headless app: landing, wind, still fluid, determinism, errors, release.
+//! FallPlugin in a headless app: landing, wind, still fluid, determinism, errors, release.
 
 mod common;
 
@@ -19,8 +19,8 @@ fn fall_app(
             ..default()
         });
     }
-    app.add_plugins(FreeFallPlugin::default())
-        .insert_resource(FreeFallSettings {
+    app.add_plugins(FallPlugin::default())
+        .insert_resource(FallSettings {
             ground_height: ground,
         });
     let entities = objects
@@ -215,4 +215,25 @@ fn changing_the_component_releases_again_from_the_transform() {
         "{:?}",
         path.position()
     );
+}
+
+/// Code written against the first names still builds and runs (with a deprecation warning)
+/// for one release.
+#[test]
+#[allow(deprecated)]
+fn the_old_names_still_work() {
+    use bevy_windfall::prelude::{FreeFallPlugin, FreeFallSettings};
+    let mut app = headless_app();
+    app.add_plugins((
+        WindPlugin::new(WindConfig::default()),
+        FreeFallPlugin::default(),
+    ));
+    ready(&mut app);
+    assert!(app.world().contains_resource::<FreeFallSettings>());
+    let lighter = FallingObject {
+        density: 1.0,
+        ..coin()
+    };
+    let error: FreeFallError = lighter.regime().unwrap_err();
+    assert_eq!(error.field(), "density");
 }

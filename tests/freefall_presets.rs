@@ -297,7 +297,7 @@ fn the_showcase_leaves_show_four_motions_at_once() {
             grid: [48, 48],
             ..default()
         }),
-        FreeFallPlugin::default(),
+        FallPlugin::default(),
     ));
     let mut canopy = population::Canopy(FallRng::new(99));
     for i in 0..population::LEAVES {

@@ -13,8 +13,7 @@ use bevy::prelude::*;
 use bevy_windfall::cloth::{ClothError, ClothSim};
 use bevy_windfall::freefall::ode::{Integrator, OdeState, TanabeKaneko};
 use bevy_windfall::freefall::{
-    DatabaseConfig, FallModel, FallRelease, FreeFallError, MarkovChain, TrajectoryDatabase,
-    WindTilt,
+    DatabaseConfig, FallError, FallModel, FallRelease, MarkovChain, TrajectoryDatabase, WindTilt,
 };
 use bevy_windfall::prelude::*;
 use bevy_windfall::spectrum::try_fbm;
@@ -222,7 +221,7 @@ fn falling_objects_are_refused_by_name_or_fall() {
                 value,
                 fields,
                 object.path(&model, release),
-                FreeFallError::field,
+                FallError::field,
                 |mut path| {
                     let tilt = WindTilt {
                         max_angle: object.wind_tilt,
@@ -272,7 +271,7 @@ fn releases_are_refused_by_name_or_fall_and_steps_stay_finite() {
                 value,
                 &[name],
                 object.path(&model, release),
-                FreeFallError::field,
+                FallError::field,
                 |mut path| {
                     for _ in 0..120 {
                         path.advance(&model, 1.0 / 60.0, Vec3::ZERO, &TILT);

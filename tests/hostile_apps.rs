@@ -171,7 +171,7 @@ fn removing_resources_mid_run_is_survivable() {
     }
     let world = app.world_mut();
     world.remove_resource::<FallModel>();
-    world.remove_resource::<FreeFallSettings>();
+    world.remove_resource::<FallSettings>();
     world.remove_resource::<WindField>();
     world.remove_resource::<WindSettings>();
     app.update();

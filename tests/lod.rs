@@ -22,7 +22,7 @@ fn leaves_app(lod: bool, camera: Vec3, wind: Option<WindConfig>) -> (App, Vec<En
             ..default()
         });
     }
-    app.add_plugins(FreeFallPlugin::default());
+    app.add_plugins(FallPlugin::default());
     let camera = app
         .world_mut()
         .spawn((LodFocus, Transform::from_translation(camera)))
@@ -189,7 +189,7 @@ fn coming_near_or_losing_the_component_never_jumps() {
     };
     let (mut app, leaves, camera) = leaves_app(true, Vec3::new(0.0, 2.0, 500.0), Some(wind));
     // Far from the ground: the leaves fall for the whole test.
-    app.insert_resource(FreeFallSettings {
+    app.insert_resource(FallSettings {
         ground_height: -1.0e4,
     });
     for &e in &leaves {
@@ -252,7 +252,7 @@ fn hostile_tiers_and_focus_give_finite_poses() {
     use bevy_windfall::lod::LodTiers;
     use common::hostile::HOSTILE;
     let mut app = common::headless_app_with_meshes();
-    app.add_plugins((FreeFallPlugin::default(), ClothPlugin::default()));
+    app.add_plugins((FallPlugin::default(), ClothPlugin::default()));
     // A focus that goes NaN and infinite, and tiers of every hostile value on either side.
     let camera = app.world_mut().spawn((LodFocus, Transform::default())).id();
     let mut leaves = Vec::new();
@@ -306,7 +306,7 @@ fn bad_tiers_are_named_and_mean_full_detail_until_fixed() {
     use bevy_windfall::cloth::{Cloth, ClothLod, ClothPlugin};
     use bevy_windfall::lod::{LodInvalid, LodTiers};
     let mut app = common::headless_app_with_meshes();
-    app.add_plugins((FreeFallPlugin::default(), ClothPlugin::default()));
+    app.add_plugins((FallPlugin::default(), ClothPlugin::default()));
     // The camera far away: valid tiers would step every object at tier 4.
     app.world_mut()
         .spawn((LodFocus, Transform::from_xyz(0.0, 2.0, 500.0)));

@@ -84,7 +84,7 @@ fn setup(
     mut materials: ResMut<Assets<StandardMaterial>>,
     mut camera: Single<&mut Transform, With<Camera3d>>,
     mut wind: ResMut<WindField>,
-    mut settings: ResMut<FreeFallSettings>,
+    mut settings: ResMut<FallSettings>,
 ) {
     let here = DespawnOnExit(Scene::Gallery);
     let middle = 4.6 * SPACING;

@@ -190,7 +190,7 @@ fn setup(
     mut spawner: ResMut<Spawner>,
     mut camera: Single<&mut Transform, With<Camera3d>>,
     mut wind: ResMut<WindField>,
-    mut settings: ResMut<FreeFallSettings>,
+    mut settings: ResMut<FallSettings>,
     mut swaying: ResMut<Assets<WindSwayMaterial>>,
     gpu: Res<WindGpuBuffers>,
     args: Res<common::ExampleArgs>,

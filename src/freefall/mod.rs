@@ -24,7 +24,7 @@
 //! | Ω | rad/s |
 //!
 //! The math is in plain types ([`Regime::new`], [`TrajectoryDatabase`], [`FallPath`], [`ode`]);
-//! [`FreeFallPlugin`] moves every [`FallingObject`] on the fixed timestep.
+//! [`FallPlugin`] moves every [`FallingObject`] on the fixed timestep.
 
 pub mod cloud;
 mod database;
@@ -62,9 +62,19 @@ pub use model::FallModel;
 pub use motion::FallScales;
 pub use path::{FallPath, StepOutcome, WindTilt};
 
-pub use object::{FallState, FallingObject, FallingObjectInvalid, FreeFallSettings, Landed};
-pub use plugin::FreeFallPlugin;
+pub use object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
+pub use plugin::FallPlugin;
 pub use presets::FallPreset;
 pub use random::FallRng;
-pub use regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape};
+pub use regime::{FallError, Fluid, PrimitiveMotion, Regime, Shape};
 pub use release::FallRelease;
+
+/// Renamed to [`FallPlugin`] (one prefix per domain), kept for one release.
+#[deprecated(since = "0.2.0", note = "renamed to `FallPlugin`")]
+pub type FreeFallPlugin = FallPlugin;
+/// Renamed to [`FallSettings`], kept for one release.
+#[deprecated(since = "0.2.0", note = "renamed to `FallSettings`")]
+pub type FreeFallSettings = FallSettings;
+/// Renamed to [`FallError`], kept for one release.
+#[deprecated(since = "0.2.0", note = "renamed to `FallError`")]
+pub type FreeFallError = FallError;

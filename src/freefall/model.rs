@@ -12,7 +12,7 @@ use super::regime::PrimitiveMotion;
 
 /// The trajectory database and the Markov chain, bounded once per main motion (eq. 9) so that a
 /// [`FallPath`](super::path::FallPath) only carries its main motion. A resource of the
-/// [`FreeFallPlugin`](super::FreeFallPlugin); replace it to use another database or chain.
+/// [`FallPlugin`](super::FallPlugin); replace it to use another database or chain.
 ///
 /// # Example
 ///

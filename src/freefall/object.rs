@@ -1,5 +1,5 @@
 //! [`FallingObject`] (what a game spawns), its runtime [`FallState`] and [`FallingObjectInvalid`]
-//! marker, the [`Landed`] message, the shared [`FreeFallSettings`], and how an object is let go
+//! marker, the [`Landed`] message, the shared [`FallSettings`], and how an object is let go
 //! (its lifecycle).
 
 use std::sync::Arc;
@@ -15,7 +15,7 @@ use super::model::FallModel;
 use super::motion::{FallScales, STROUHAL};
 use super::path::FallPath;
 use super::presets::FallPreset;
-use super::regime::{Fluid, FreeFallError, PrimitiveMotion, Regime, Shape, regime};
+use super::regime::{FallError, Fluid, PrimitiveMotion, Regime, Shape, regime};
 use super::release::FallRelease;
 use super::tiers::TierClock;
 use crate::error::InvalidValue;
@@ -110,16 +110,16 @@ impl Default for FallingObject {
 
 impl FallingObject {
     /// Re, I*, U and the main motion (the phase diagram's, or [`FallingObject::main_motion`]).
-    pub fn regime(&self) -> Result<Regime, FreeFallError> {
+    pub fn regime(&self) -> Result<Regime, FallError> {
         if !(self.deviation.is_finite() && (0.0..=100.0).contains(&self.deviation)) {
-            return Err(FreeFallError::Invalid(InvalidValue {
+            return Err(FallError::Invalid(InvalidValue {
                 field: "deviation",
                 value: self.deviation,
                 reason: "must be in [0, 100]",
             }));
         }
         if !(self.wind_tilt.is_finite() && self.wind_tilt.abs() <= std::f32::consts::PI) {
-            return Err(FreeFallError::Invalid(InvalidValue {
+            return Err(FallError::Invalid(InvalidValue {
                 field: "wind_tilt",
                 value: self.wind_tilt,
                 reason: "must be an angle in [−π, π]",
@@ -151,7 +151,7 @@ impl FallingObject {
     ///
     /// # Errors
     /// What [`Self::regime`] or [`FallRelease::validate`] reject.
-    pub fn path(&self, model: &FallModel, release: FallRelease) -> Result<FallPath, FreeFallError> {
+    pub fn path(&self, model: &FallModel, release: FallRelease) -> Result<FallPath, FallError> {
         let regime = self.regime()?;
         release.validate()?;
         let chain = match &self.markov {
@@ -225,7 +225,7 @@ impl FallState {
 /// field), or where it was let go is (checked by [`FallRelease::validate`]): a `Transform`
 /// whose translation is not finite or beyond ±[`MAX_COORDINATE`](crate::MAX_COORDINATE)
 /// (`release.position`), a zero or non-finite rotation (`release.rotation`), or a
-/// [`FreeFallSettings::ground_height`] that is not finite (`release.ground`). Inserted in place
+/// [`FallSettings::ground_height`] that is not finite (`release.ground`). Inserted in place
 /// of a fall (logged once), removed once the component is changed and valid; the crate's one
 /// convention for runtime failures, as [`ClothInvalid`](crate::cloth::ClothInvalid),
 /// [`PhysicalClothInvalid`](crate::aero::PhysicalClothInvalid) and
@@ -252,9 +252,9 @@ impl FallState {
 /// ```
 #[derive(Component, Clone, Debug, PartialEq, Reflect)]
 #[reflect(Component, Debug)]
-pub struct FallingObjectInvalid(pub FreeFallError);
+pub struct FallingObjectInvalid(pub FallError);
 
-crate::lifecycle::invalid_marker!(FallingObjectInvalid, FreeFallError);
+crate::lifecycle::invalid_marker!(FallingObjectInvalid, FallError);
 
 /// Sent when a [`FallingObject`] reaches the ground.
 ///
@@ -294,11 +294,11 @@ pub struct Landed {
 /// // A table top 0.75 m up.
 /// App::new()
 ///     .add_plugins((MinimalPlugins, WindfallPlugins))
-///     .insert_resource(FreeFallSettings { ground_height: 0.75 });
+///     .insert_resource(FallSettings { ground_height: 0.75 });
 /// ```
 #[derive(Resource, Clone, Debug, PartialEq, Default, Reflect)]
 #[reflect(Resource, Default, Debug)]
-pub struct FreeFallSettings {
+pub struct FallSettings {
     /// Height of the ground, m: objects stop there.
     pub ground_height: f32,
 }
@@ -332,7 +332,7 @@ impl Described for FallingObject {
     type Key = FallingObject;
     type Data = (&'static Transform, &'static mut FallState);
     type Context = (
-        Option<Res<'static, FreeFallSettings>>,
+        Option<Res<'static, FallSettings>>,
         Option<Res<'static, FallModel>>,
     );
     const SUBJECT: &'static str = "FallingObject";
@@ -352,9 +352,9 @@ impl Described for FallingObject {
         &self,
         _: Entity,
         (transform, mut state): (&Transform, Mut<FallState>),
-        (settings, model): &mut (Option<Res<FreeFallSettings>>, Option<Res<FallModel>>),
+        (settings, model): &mut (Option<Res<FallSettings>>, Option<Res<FallModel>>),
         _: &mut Commands,
-    ) -> Option<Result<(), FreeFallError>> {
+    ) -> Option<Result<(), FallError>> {
         let model = model.as_deref()?;
         let velocity = state
             .path

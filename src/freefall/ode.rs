@@ -16,7 +16,7 @@
 //! large) as Tanabe and Kaneko report. The lift is perpendicular to (u, v), so only the damping
 //! and gravity do work: the speed stays below max(V₀, g / A∥).
 
-use super::regime::FreeFallError;
+use super::regime::FallError;
 use crate::error::InvalidValue;
 
 /// Parameters of eq. 4 (SI units).
@@ -373,9 +373,9 @@ pub(crate) fn trajectory(
     dt: f64,
     duration: f64,
     method: Integrator,
-) -> Result<Vec<OdeState>, FreeFallError> {
+) -> Result<Vec<OdeState>, FallError> {
     let invalid = |field, value: f64, reason| {
-        FreeFallError::Invalid(InvalidValue {
+        FallError::Invalid(InvalidValue {
             field,
             value: value as f32,
             reason,
@@ -434,7 +434,7 @@ impl TanabeKaneko {
         dt: f64,
         duration: f64,
         method: Integrator,
-    ) -> Result<Vec<OdeState>, FreeFallError> {
+    ) -> Result<Vec<OdeState>, FallError> {
         trajectory(self, state, dt, duration, method)
     }
 }

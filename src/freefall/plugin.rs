@@ -1,4 +1,4 @@
-//! The [`FreeFallPlugin`]: steps every [`FallingObject`] on the fixed timestep and poses it once
+//! The [`FallPlugin`]: steps every [`FallingObject`] on the fixed timestep and poses it once
 //! per frame.
 
 use std::sync::{Mutex, PoisonError};
@@ -11,7 +11,7 @@ use bevy::transform::components::Transform;
 
 use super::lod::{FallClock, FallLod};
 use super::model::FallModel;
-use super::object::{FallState, FallingObject, FallingObjectInvalid, FreeFallSettings, Landed};
+use super::object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
 use super::path::{StepOutcome, WindTilt};
 use super::tiers::TierClock;
 use crate::lod::LodFocus;
@@ -20,10 +20,10 @@ use crate::wind::WindField;
 
 crate::schedule::simulation_plugin!(
     /// Moves every [`FallingObject`] on the fixed timestep and poses it once per frame.
-    FreeFallPlugin
+    FallPlugin
 );
 
-impl Plugin for FreeFallPlugin {
+impl Plugin for FallPlugin {
     fn build(&self, app: &mut App) {
         let schedule = self.configure(app);
         crate::lifecycle::observe::<FallingObject>(app);
@@ -33,7 +33,7 @@ impl Plugin for FreeFallPlugin {
         app.register_type::<FallingObject>()
             .register_type::<FallState>()
             .register_type::<FallingObjectInvalid>()
-            .register_type::<FreeFallSettings>()
+            .register_type::<FallSettings>()
             .register_type::<FallLod>()
             .register_type::<crate::lod::LodInvalid>()
             .register_type::<LodFocus>()
@@ -41,7 +41,7 @@ impl Plugin for FreeFallPlugin {
             .register_type::<crate::lod::LodTiers>()
             .register_type::<FallModel>()
             .register_type::<super::presets::FallPreset>()
-            .init_resource::<FreeFallSettings>()
+            .init_resource::<FallSettings>()
             .init_resource::<FallClock>()
             .add_message::<Landed>()
             // Every system runs only when there is something for it: a system the executor hands

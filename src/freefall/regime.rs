@@ -221,7 +221,7 @@ impl Shape {
 
 /// Why an object cannot fall by the paper's model.
 #[derive(Clone, Copy, Debug, PartialEq, Error, Reflect)]
-pub enum FreeFallError {
+pub enum FallError {
     /// A number outside its valid range.
     #[error(transparent)]
     Invalid(#[from] InvalidValue),
@@ -237,7 +237,7 @@ pub enum FreeFallError {
     },
 }
 
-impl FreeFallError {
+impl FallError {
     /// Name of the offending field (`"shape.thickness"`, `"density"`, ...).
     pub fn field(&self) -> &'static str {
         match self {
@@ -283,7 +283,7 @@ pub(crate) fn regime(
     density: f32,
     fluid: &Fluid,
     gravity: f32,
-) -> Result<Regime, FreeFallError> {
+) -> Result<Regime, FallError> {
     let (l, a, b) = shape.lengths();
     let (names, what) = match shape {
         Shape::Disk { .. } => (
@@ -332,7 +332,7 @@ pub(crate) fn regime(
     positive("density", density, 1.0e7)?;
     let ratio = f64::from(density) / f64::from(fluid.density);
     if ratio <= 1.0 {
-        return Err(FreeFallError::LighterThanFluid {
+        return Err(FallError::LighterThanFluid {
             density,
             fluid_density: fluid.density,
         });
@@ -360,15 +360,15 @@ pub(crate) fn regime(
     })
 }
 
-fn invalid(field: &'static str, value: f32, reason: &'static str) -> FreeFallError {
-    FreeFallError::Invalid(InvalidValue {
+fn invalid(field: &'static str, value: f32, reason: &'static str) -> FallError {
+    FallError::Invalid(InvalidValue {
         field,
         value,
         reason,
     })
 }
 
-fn positive(field: &'static str, value: f32, max: f32) -> Result<(), FreeFallError> {
+fn positive(field: &'static str, value: f32, max: f32) -> Result<(), FallError> {
     if value.is_finite() && value > 0.0 && value <= max {
         Ok(())
     } else {
@@ -418,7 +418,7 @@ impl Regime {
         density: f32,
         fluid: &Fluid,
         gravity: f32,
-    ) -> Result<Self, FreeFallError> {
+    ) -> Result<Self, FallError> {
         regime(shape, density, fluid, gravity)
     }
 }

@@ -3,7 +3,7 @@
 use crate::error::InvalidValue;
 use bevy::math::{Quat, Vec3};
 
-use super::regime::FreeFallError;
+use super::regime::FallError;
 
 /// Where and how an object is let go.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,14 +52,14 @@ impl FallRelease {
     /// ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE) (or `ground` = −∞: no ground), `rotation`
     /// (if any) finite and not zero
     /// (any length: it is normalised), `velocity` finite and within [`FallRelease::MAX_SPEED`](crate::freefall::FallRelease::MAX_SPEED).
-    /// The fields are named `release.position`, ... ; the [`FreeFallPlugin`] releases from the
-    /// entity's `Transform` and [`FreeFallSettings::ground_height`].
+    /// The fields are named `release.position`, ... ; the [`FallPlugin`] releases from the
+    /// entity's `Transform` and [`FallSettings::ground_height`].
     ///
-    /// [`FreeFallPlugin`]: super::FreeFallPlugin
-    /// [`FreeFallSettings::ground_height`]: super::object::FreeFallSettings::ground_height
-    pub fn validate(&self) -> Result<(), FreeFallError> {
+    /// [`FallPlugin`]: super::FallPlugin
+    /// [`FallSettings::ground_height`]: super::object::FallSettings::ground_height
+    pub fn validate(&self) -> Result<(), FallError> {
         let invalid = |field, value, reason| {
-            FreeFallError::Invalid(InvalidValue {
+            FallError::Invalid(InvalidValue {
                 field,
                 value,
                 reason,
@@ -115,12 +115,12 @@ impl FallRelease {
 /// The one check of a ground height, a single object's and a cloud's (`release.ground`): within
 /// ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), or −∞ (no ground: the fall never ends)
 /// where `endless` allows it.
-pub(crate) fn check_ground(ground: f32, endless: bool) -> Result<(), FreeFallError> {
+pub(crate) fn check_ground(ground: f32, endless: bool) -> Result<(), FallError> {
     let within = ground.abs() <= crate::guard::MAX_COORDINATE;
     if within || (endless && ground == f32::NEG_INFINITY) {
         return Ok(());
     }
-    Err(FreeFallError::Invalid(InvalidValue {
+    Err(FallError::Invalid(InvalidValue {
         field: "release.ground",
         value: ground,
         reason: if endless {

@@ -50,7 +50,7 @@ use bevy::transform::components::Transform;
 
 use super::model::FallModel;
 use super::object::FallingObject;
-use super::regime::FreeFallError;
+use super::regime::FallError;
 
 /// Most leaves one cloud may hold.
 pub(crate) const MAX_CLOUD_LEAVES: u32 = 4_000_000;
@@ -78,12 +78,12 @@ impl Default for CloudRegion {
 /// A cloud of `count` falling leaves (or paper, confetti, ash) let go in `region`.
 ///
 /// Each leaf falls as a single [`FallingObject`] with the description `object` would (its own
-/// seed from the cloud's `seed` and its index), lands on [`FreeFallSettings::ground_height`],
+/// seed from the cloud's `seed` and its index), lands on [`FallSettings::ground_height`],
 /// stays there, and is lifted again by a strong enough wind as a single object is. Change the
 /// component to let the whole cloud go again. The cloud's own `Transform` does not move the
 /// leaves: they live in world space.
 ///
-/// [`FreeFallSettings::ground_height`]: super::FreeFallSettings::ground_height
+/// [`FallSettings::ground_height`]: super::FallSettings::ground_height
 ///
 /// # Example
 ///
@@ -148,9 +148,9 @@ impl LeafCloud {
     /// whose corners are not finite, beyond ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE) or not
     /// ordered, negative or NaN LOD distances (far < near), a `recycle_after` not finite and
     /// ≥ 0, or a ground that is not finite and within ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE).
-    pub fn leaves(&self, model: &FallModel, ground: f32) -> Result<CloudLeaves, FreeFallError> {
+    pub fn leaves(&self, model: &FallModel, ground: f32) -> Result<CloudLeaves, FallError> {
         let invalid = |field, value, reason| {
-            FreeFallError::Invalid(InvalidValue {
+            FallError::Invalid(InvalidValue {
                 field,
                 value,
                 reason,

@@ -10,9 +10,9 @@ use bevy::time::{Fixed, Time};
 use super::leaves::{CloudLeaves, CloudStep, CloudStepReport, LeafPose};
 use super::{CloudRegion, LeafCloud};
 use crate::freefall::model::FallModel;
-use crate::freefall::object::FreeFallSettings;
+use crate::freefall::object::FallSettings;
 use crate::freefall::path::WindTilt;
-use crate::freefall::regime::FreeFallError;
+use crate::freefall::regime::FallError;
 use crate::lifecycle::Described;
 use crate::lod::{LodFocus, LodTiers};
 use crate::schedule::WindfallSystems;
@@ -53,9 +53,9 @@ impl LeafCloudState {
 /// leaves (logged once), removed once the component is changed and valid.
 #[derive(Component, Clone, Debug, PartialEq, Reflect)]
 #[reflect(Component, Debug)]
-pub struct LeafCloudInvalid(pub FreeFallError);
+pub struct LeafCloudInvalid(pub FallError);
 
-crate::lifecycle::invalid_marker!(LeafCloudInvalid, FreeFallError);
+crate::lifecycle::invalid_marker!(LeafCloudInvalid, FallError);
 
 crate::schedule::simulation_plugin!(
     /// Steps every [`LeafCloud`] on the fixed timestep (in [`WindfallSystems::Simulate`]) and poses
@@ -77,7 +77,7 @@ impl Plugin for LeafCloudPlugin {
             .register_type::<crate::lod::LodView>()
             .register_type::<CloudRegion>()
             .register_type::<LodTiers>()
-            .init_resource::<FreeFallSettings>()
+            .init_resource::<FallSettings>()
             // Only with a cloud to move (a system with nothing to do still costs a wake-up).
             .add_systems(
                 schedule,
@@ -103,7 +103,7 @@ impl Described for LeafCloud {
     type Key = LeafCloud;
     type Data = &'static mut LeafCloudState;
     type Context = (
-        Option<Res<'static, FreeFallSettings>>,
+        Option<Res<'static, FallSettings>>,
         Option<Res<'static, FallModel>>,
     );
     const SUBJECT: &'static str = "LeafCloud";
@@ -118,9 +118,9 @@ impl Described for LeafCloud {
         &self,
         _: Entity,
         mut state: Mut<LeafCloudState>,
-        (settings, model): &mut (Option<Res<FreeFallSettings>>, Option<Res<FallModel>>),
+        (settings, model): &mut (Option<Res<FallSettings>>, Option<Res<FallModel>>),
         _: &mut Commands,
-    ) -> Option<Result<(), FreeFallError>> {
+    ) -> Option<Result<(), FallError>> {
         let model = model.as_deref()?;
         let ground = settings.as_ref().map_or(0.0, |s| s.ground_height);
         state.poses.clear();
