@@ -115,7 +115,7 @@ fn no_global_wind_indoors_but_a_fan_still_blows() {
 #[test]
 fn shelters_refuse_bad_sizes_as_sources_do() {
     // The `try_` constructors name the first bad side; the plain ones hold it (0 for a negative
-    // or NaN side, MAX_COORDINATE for a huge one), as the sources' constructors do.
+    // or non-finite side, MAX_COORDINATE for a finite huge one), as the sources' do.
     let good = Vec3::new(0.1, 1.0, 5.0);
     assert_eq!(
         WindShelter::try_wall(good).unwrap(),

@@ -5,8 +5,8 @@
 //! `cargo run --release --example report -- [DIR] [--quick] [--only SECTION]` writes
 //! `DIR/report.md` (default `target/report`) and its plots, and prints the Markdown. `--quick`
 //! runs fewer repetitions (for CI in a debug build; its timings mean little); `--only` runs one
-//! section (`spectrum`, `wind`, `freefall`, `presets`, `cloth`, `aero`, `particle_cloth`,
-//! `measurements`, `costs`, `stability`).
+//! section into `DIR/report_SECTION.md` (`spectrum`, `wind`, `freefall`, `presets`, `cloth`,
+//! `aero`, `particle_cloth`, `measurements`, `costs`, `stability`).
 
 mod aero;
 mod cloth;
@@ -92,7 +92,13 @@ fn main() {
     while let Some(arg) = args.next() {
         match arg.as_str() {
             "--quick" => quick = true,
-            "--only" => only = args.next(),
+            "--only" => {
+                only = args.next();
+                if only.is_none() {
+                    eprintln!("--only needs a section name");
+                    std::process::exit(2);
+                }
+            }
             other => dir = other.into(),
         }
     }
@@ -127,12 +133,23 @@ fn main() {
         ("costs", costs::report),
         ("stability", stability::report),
     ];
+    if let Some(only) = &only
+        && !sections.iter().any(|(name, _)| name == only)
+    {
+        let names: Vec<&str> = sections.iter().map(|(name, _)| *name).collect();
+        eprintln!("no section {only:?}; the sections: {}", names.join(", "));
+        std::process::exit(2);
+    }
     for (name, section) in sections {
         if only.as_deref().is_none_or(|o| o == name) {
             section(&mut report);
         }
     }
-    let path = dir.join("report.md");
+    // One section goes beside the whole report, never over it.
+    let path = dir.join(match &only {
+        Some(name) => format!("report_{name}.md"),
+        None => "report.md".into(),
+    });
     std::fs::write(&path, &report.markdown).expect("cannot write report.md");
     println!("{}", report.markdown);
     eprintln!("report written to {}", path.display());

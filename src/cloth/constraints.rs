@@ -16,10 +16,10 @@ use bevy::math::{Vec2, Vec3};
 /// the pole and the edge between them bulges downwind by `bow` and sideways by `lean` (m).
 ///
 /// The paper keeps the nodes' heights, so a bowed edge is longer than the cloth and its
-/// neighbouring nodes break eq. 7 (by 2.4 % at a flag's bow). Here the hem keeps its length:
-/// each node sits `spacing` below-and-out from the one above, so bowing the edge lifts its lower
-/// end up the pole, by about (π W / 2)² / H of the height H (1 % at a flag's bow), as a real
-/// hem does. A bow so deep that one step of the arc would take more than half a spacing is
+/// neighbouring nodes break eq. 7 (by 2.4 % at a flag's bow in a strong wind). Here the hem
+/// keeps its length: each node sits `spacing` below-and-out from the one above, so bowing the
+/// edge lifts its lower end up the pole by about (π W / 2)² / H metres, W the bulge (m) and H the
+/// edge's length (0.8–1.2 % of H at a flag's bow), as a real hem does. A bow so deep that one step of the arc would take more than half a spacing is
 /// scaled down to that (the hem would otherwise fold back on itself).
 pub fn pole_hem(rows: usize, spacing: f32, bow: f32, lean: f32, out: &mut Vec<Vec3>) {
     out.clear();

@@ -110,7 +110,8 @@ pub struct ClothParams {
     /// edge's length (grows with the wind, see [`ClothSim::rebuild`](super::sim::ClothSim::rebuild)).
     pub bow: f32,
     /// W2 of eq. 8: how far the pole edge bulges across the stream at its middle, as a fraction
-    /// of the edge's length.
+    /// of the edge's length. The edge keeps its length (a hem): a bow and lean so deep that one
+    /// node would stand more than half a row spacing out from the next are scaled down.
     pub lean: f32,
     /// Largest distance between neighbouring yarns, as a multiple of the rest spacing (L of
     /// eq. 7 is this times [`ClothGrid::row_spacing`]).

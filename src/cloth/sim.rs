@@ -314,13 +314,15 @@ impl ClothSim {
             self.sheet
                 .column_taps(middle - along, step * n as f64, coarse, &mut self.taps);
         }
-        pole_hem(
-            rows,
-            spacing,
-            self.params.bow * strength.gain * self.grid.height,
-            self.params.lean * strength.gain * self.grid.height,
-            &mut self.hem,
-        );
+        if self.attachment == ClothAttachment::Pole {
+            pole_hem(
+                rows,
+                spacing,
+                self.params.bow * strength.gain * self.grid.height,
+                self.params.lean * strength.gain * self.grid.height,
+                &mut self.hem,
+            );
+        }
         let edge = |k: usize| match self.attachment {
             ClothAttachment::Pole => self.hem[k],
             ClothAttachment::Rod => Vec3::new(k as f32 * spacing, 0.0, 0.0),

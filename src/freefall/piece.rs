@@ -350,7 +350,9 @@ fn ease_toward(shape: &[f32; SEGMENT_SAMPLES], wanted: f32) -> f32 {
 /// Shortest piece, s: keeps the piece loop finite for any input.
 pub const MIN_PIECE: f32 = 1e-4;
 
-/// The rotation about z by θ₀ + φ, from (cos θ₀/2, sin θ₀/2) and φ (|φ| ≤ 2π).
+/// The rotation about z by θ₀ + φ, from (cos θ₀/2, sin θ₀/2) and φ (a swing's turn times its
+/// progress, which the ease lets run from −¼ to 1¼; beyond |φ| = 2π the series hands over to
+/// the library).
 fn rotation_z(start_half: Vec2, phi: f32) -> Quat {
     let (s, c) = sin_cos_small(0.5 * phi);
     let (c0, s0) = (start_half.x, start_half.y);

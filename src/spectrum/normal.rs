@@ -65,19 +65,21 @@ static TABLES: LazyLock<Tables> = LazyLock::new(|| {
 /// Standard complex normals `X + iY` (X, Y independent standard normal) from a PCG stream.
 pub(crate) struct NormalPairs {
     rng: Pcg64,
+    tables: &'static Tables,
 }
 
 impl NormalPairs {
     pub(crate) fn new(seed: u64) -> Self {
         Self {
             rng: Pcg64::seed_from_u64(seed),
+            tables: &TABLES,
         }
     }
 
     pub(crate) fn next_pair(&mut self) -> Complex<f32> {
         let bits = self.rng.next_u64();
-        let re = standard_normal((bits >> 32) as u32, &mut self.rng);
-        let im = standard_normal(bits as u32, &mut self.rng);
+        let re = from_tables(self.tables, (bits >> 32) as u32, &mut self.rng);
+        let im = from_tables(self.tables, bits as u32, &mut self.rng);
         Complex::new(re, im)
     }
 }
@@ -85,9 +87,13 @@ impl NormalPairs {
 /// One standard normal: a first attempt from the 32 bits `bits`, drawing more from `rng` only
 /// on the slow path. The crate's one normal sampler: the spectra's pairs (from PCG64) and the
 /// falls' Gaussian spreads (from [`FallRng`](crate::freefall::FallRng), PCG32) both use it.
-#[inline]
 pub(crate) fn standard_normal<R: Rng>(bits: u32, rng: &mut R) -> f32 {
-    let t: &Tables = &TABLES;
+    from_tables(&TABLES, bits, rng)
+}
+
+/// [`standard_normal`] with the tables at hand (the spectra's hot loop keeps them).
+#[inline]
+fn from_tables<R: Rng>(t: &Tables, bits: u32, rng: &mut R) -> f32 {
     let layer = (bits & 0x7F) as usize;
     let position = bits >> 8;
     if position < t.inside[layer] {
