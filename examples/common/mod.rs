@@ -1,15 +1,17 @@
 //! What the examples share: [`ScreenshotPlugin`], how CI renders them (`--screenshot PATH`,
-//! `--window WxH`, `--frames N`), and the showcase's scenery. Nothing a game needs.
+//! `--tour DIR`, `--window WxH`, `--frames N`), and the showcase's scenery. Nothing a game needs.
 #![allow(dead_code)]
 
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Duration;
 
 use bevy::prelude::*;
 use bevy::render::render_resource::PipelineCache;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
 use bevy::render::{Render, RenderApp, RenderSystems};
+use bevy::time::TimeUpdateStrategy;
 use bevy::window::WindowResolution;
 
 /// Command-line options of the example scenes.
@@ -19,6 +21,8 @@ pub struct ExampleArgs {
     pub frames: Option<u32>,
     /// Save a screenshot here once the scene has rendered, then exit.
     pub screenshot: Option<PathBuf>,
+    /// Save a screenshot of each scene into this folder (the showcase's tour), then exit.
+    pub tour: Option<PathBuf>,
     /// Window size in pixels (default 1280 × 720; CI renders smaller, in software).
     pub window: Option<(u32, u32)>,
     /// Other arguments, for the scene itself.
@@ -26,7 +30,8 @@ pub struct ExampleArgs {
 }
 
 impl ExampleArgs {
-    /// Reads `--frames N`, `--screenshot PATH` and `--window WxH` from the command line.
+    /// Reads `--frames N`, `--screenshot PATH`, `--tour DIR` and `--window WxH` from the command
+    /// line.
     pub fn parse() -> Self {
         let mut args = Self::default();
         let mut it = std::env::args().skip(1);
@@ -36,6 +41,7 @@ impl ExampleArgs {
                     args.frames = it.next().and_then(|n| n.parse().ok());
                 }
                 "--screenshot" => args.screenshot = it.next().map(PathBuf::from),
+                "--tour" => args.tour = it.next().map(PathBuf::from),
                 "--window" => {
                     args.window = it.next().and_then(|s| {
                         let (w, h) = s.split_once('x')?;
@@ -47,11 +53,24 @@ impl ExampleArgs {
         }
         args
     }
+
+    /// Whether screenshots are being recorded (`--screenshot` or `--tour`): then the game runs
+    /// on the [`RECORDED_FRAME`] clock.
+    pub fn recording(&self) -> bool {
+        self.screenshot.is_some() || self.tour.is_some()
+    }
 }
 
-/// Software renderers show black frames while shaders compile: a screenshot waits at least
-/// this many frames (or `--frames`), and until [`Readiness::ready`].
-const DEFAULT_SCREENSHOT_FRAME: u32 = 120;
+/// The game time one frame takes while recording. A software renderer takes 0.1–1.5 s a frame,
+/// and a clock that followed it would show each scene at a different moment on each run (a leaf
+/// storm that had half landed, or not yet): recorded frames each last 1/15 s of game time (four
+/// fixed steps), and none passes while shaders compile, so every screenshot shows its scene at
+/// the same moment, 4 s in.
+pub const RECORDED_FRAME: Duration = Duration::from_nanos(66_666_667);
+
+/// Software renderers show black frames while shaders compile: a screenshot waits until
+/// [`Readiness::ready`], then this many frames (or `--frames`) of [`RECORDED_FRAME`] each.
+pub const DEFAULT_SCREENSHOT_FRAME: u32 = 60;
 
 /// Render pipelines still compiling, counted by the render world each frame.
 #[derive(Resource, Clone, Default)]
@@ -94,9 +113,19 @@ fn track_readiness(pending: Res<PendingPipelines>, mut readiness: ResMut<Readine
     }
 }
 
+/// While recording, the game's clock stands still until the renderer has caught up.
+fn hold_time_until_ready(readiness: Res<Readiness>, mut time: ResMut<Time<Virtual>>) {
+    if readiness.ready() {
+        time.unpause();
+    } else {
+        time.pause();
+    }
+}
+
 /// How CI renders an example (not needed in a game): `--screenshot PATH` saves the window once
-/// every render pipeline has compiled and exits, `--window WxH` sizes the window, `--frames N`
-/// exits after N frames (or takes the screenshot no earlier). Add it after `DefaultPlugins`.
+/// every render pipeline has compiled and 60 frames (or `--frames N`) have been played on the
+/// [`RECORDED_FRAME`] clock, and exits; `--window WxH` sizes the window; `--frames N` alone
+/// exits after N frames. Add it after `DefaultPlugins`.
 pub struct ScreenshotPlugin;
 
 impl Plugin for ScreenshotPlugin {
@@ -109,6 +138,10 @@ impl Plugin for ScreenshotPlugin {
                 }
             };
             app.add_systems(Startup, size);
+        }
+        if args.recording() {
+            app.insert_resource(TimeUpdateStrategy::ManualDuration(RECORDED_FRAME))
+                .add_systems(First, hold_time_until_ready.after(track_readiness));
         }
         app.insert_resource(args)
             .init_resource::<FrameCount>()
@@ -143,6 +176,8 @@ pub fn example_app(title: &str) -> App {
 #[derive(Resource, Default)]
 struct FrameCount {
     frames: u32,
+    /// Frames played since the renderer caught up.
+    played: u32,
     requested: bool,
 }
 
@@ -170,8 +205,9 @@ fn frames_and_screenshot(
 ) {
     count.frames += 1;
     if let Some(path) = &args.screenshot {
+        count.played += u32::from(readiness.ready());
         let at = args.frames.unwrap_or(DEFAULT_SCREENSHOT_FRAME);
-        if count.frames >= at && readiness.ready() && !count.requested {
+        if count.played >= at && !count.requested {
             count.requested = true;
             take_screenshot(&mut commands, path.clone());
         }

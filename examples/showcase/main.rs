@@ -73,14 +73,16 @@ pub struct Featured;
 #[derive(Component)]
 struct Hud;
 
-/// `--tour DIR`: where the screenshots go and how far the tour is. Each scene is saved after
-/// 120 frames once every render pipeline it needs has compiled (software renderers show black
-/// frames until then).
+/// `--tour DIR`: where the screenshots go and how far the tour is. Each scene is saved once
+/// every render pipeline it needs has compiled (software renderers show black frames until then,
+/// and the game's clock stands still) and 60 frames have been played.
 #[derive(Resource)]
 struct Tour {
     dir: PathBuf,
     next: usize,
     frames_in_scene: u32,
+    /// Frames played since the scene's pipelines compiled.
+    played: u32,
     requested: bool,
 }
 
@@ -113,12 +115,13 @@ fn main() {
     .init_resource::<SceneInfo>()
     .add_plugins((leaves::plugin, coin::plugin, flag::plugin, gallery::plugin))
     .add_systems(Update, (switch_scene, toggle_gizmos, steer_wind, show_hud));
-    if let Some(dir) = option("--tour") {
+    if let Some(dir) = args.tour {
         std::fs::create_dir_all(&dir).expect("--tour: cannot create the folder");
         app.insert_resource(Tour {
-            dir: dir.into(),
+            dir,
             next: 0,
             frames_in_scene: 0,
+            played: 0,
             requested: false,
         })
         .insert_state(Scene::ALL[0])
@@ -239,7 +242,8 @@ fn tour(
     if tour.frames_in_scene.is_multiple_of(50) {
         info!("tour: scene {}, frame {}", tour.next, tour.frames_in_scene);
     }
-    if tour.frames_in_scene >= 120 && readiness.ready() && !tour.requested {
+    tour.played += u32::from(readiness.ready());
+    if tour.played >= common::DEFAULT_SCREENSHOT_FRAME && !tour.requested {
         tour.requested = true;
         let scene = Scene::ALL[tour.next];
         let path = tour.dir.join(format!("showcase_{}.png", scene.name()));
@@ -249,6 +253,7 @@ fn tour(
         commands.entity(entity).despawn();
         tour.next += 1;
         tour.frames_in_scene = 0;
+        tour.played = 0;
         tour.requested = false;
         match Scene::ALL.get(tour.next) {
             Some(&scene) => next.set(scene),
