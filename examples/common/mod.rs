@@ -34,7 +34,7 @@ impl ExampleArgs {
     /// line.
     pub fn parse() -> Self {
         let mut args = Self::default();
-        let mut it = std::env::args().skip(1);
+        let mut it = command_line().into_iter();
         while let Some(arg) = it.next() {
             match arg.as_str() {
                 "--frames" => {
@@ -59,6 +59,30 @@ impl ExampleArgs {
     pub fn recording(&self) -> bool {
         self.screenshot.is_some() || self.tour.is_some()
     }
+}
+
+/// The arguments after the program's name; on the web, the page's address as a command line:
+/// `index.html?scene=flag&tour=shots` reads as `--scene flag --tour shots`.
+fn command_line() -> Vec<String> {
+    #[cfg(not(target_arch = "wasm32"))]
+    let line = std::env::args().skip(1).collect();
+    #[cfg(target_arch = "wasm32")]
+    let line = {
+        let query = web_sys::window()
+            .and_then(|window| window.location().search().ok())
+            .unwrap_or_default();
+        query
+            .trim_start_matches('?')
+            .split('&')
+            .filter(|pair| !pair.is_empty())
+            .flat_map(|pair| {
+                let (key, value) = pair.split_once('=').unwrap_or((pair, ""));
+                std::iter::once(format!("--{key}"))
+                    .chain((!value.is_empty()).then(|| value.to_string()))
+            })
+            .collect()
+    };
+    line
 }
 
 /// The game time one frame takes while recording. A software renderer takes 0.1–1.5 s a frame,
@@ -165,6 +189,9 @@ pub fn example_app(title: &str) -> App {
     app.add_plugins(DefaultPlugins.set(WindowPlugin {
         primary_window: Some(Window {
             title: title.into(),
+            // On the web: draw into the page's `<canvas id="bevy">`, sized by the page.
+            canvas: Some("#bevy".into()),
+            fit_canvas_to_parent: true,
             ..default()
         }),
         ..default()

@@ -116,6 +116,8 @@ fn main() {
     .add_plugins((leaves::plugin, coin::plugin, flag::plugin, gallery::plugin))
     .add_systems(Update, (switch_scene, toggle_gizmos, steer_wind, show_hud));
     if let Some(dir) = args.tour {
+        // On the web the screenshots are downloads: the browser chooses the folder.
+        #[cfg(not(target_arch = "wasm32"))]
         std::fs::create_dir_all(&dir).expect("--tour: cannot create the folder");
         app.insert_resource(Tour {
             dir,

@@ -1,0 +1,260 @@
+#!/usr/bin/env python3
+"""Open a static web build of the game in headless Chromium and collect the screenshots it saves.
+
+On wasm, Bevy's `save_to_disk` encodes the PNG, wraps it in a Blob URL and clicks an
+`<a download="NAME.png">` link: each screenshot is a browser *download*. This script serves
+SITE_DIR over HTTP on 127.0.0.1, starts headless Chromium (WebGPU on SwiftShader, or with
+`--webgl2` no WebGPU flags so the page falls back to WebGL2), tells it through the Chrome
+DevTools Protocol to accept downloads into OUT_DIR, opens index.html?QUERY, echoes the page's
+console (also to OUT_DIR/console.log; Chromium's stderr goes to OUT_DIR/chromium.log) and waits
+until every expected file has arrived.
+
+CDP normally speaks WebSocket, which the standard library lacks, so Chromium is started with
+`--remote-debugging-pipe`: it reads commands on its fd 3 and writes replies and events on its
+fd 4, each message a JSON object terminated by a NUL byte.
+
+Usage: web.py SITE_DIR OUT_DIR [--url-query Q] --expect A.png,B.png [--timeout S] [--webgl2]
+Exit 0 once all expected files are there; 1 on timeout (listing the missing) or if Chromium dies.
+"""
+import argparse
+import fcntl
+import functools
+import http.server
+import json
+import os
+import queue
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+START = time.monotonic()
+# Chromium on Linux has navigator.gpu even without WebGPU flags; only an adapter tells.
+WEBGPU = """navigator.gpu ? navigator.gpu.requestAdapter().then(a => 'webgpu available, adapter: '
+  + (a ? a.info.vendor + ' ' + a.info.architecture : 'none')) : 'no webgpu'"""
+
+
+class Handler(http.server.SimpleHTTPRequestHandler):
+    extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map,
+                      ".wasm": "application/wasm", ".js": "text/javascript"}
+    log_message = lambda self, *args: None  # quiet
+
+
+def serve(site):
+    server = http.server.ThreadingHTTPServer(
+        ("127.0.0.1", 0), functools.partial(Handler, directory=site))
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server.server_address[1]
+
+
+def find_chromium():
+    found = [shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome")]
+    return next(filter(None, found), None) or sys.exit("web.py: no chromium on PATH")
+
+
+class Cdp:
+    """Chromium with a DevTools pipe: send() waits for the reply, events go to self.events."""
+
+    def __init__(self, argv, stderr):
+        to_child, self.cmd = os.pipe()       # we write commands, Chromium reads fd 3
+        self.resp, from_child = os.pipe()    # Chromium writes fd 4, we read
+
+        def fds_3_and_4():                   # in the child, before exec
+            r = fcntl.fcntl(to_child, fcntl.F_DUPFD, 10)  # out of the way of 3 and 4 first
+            w = fcntl.fcntl(from_child, fcntl.F_DUPFD, 10)
+            os.dup2(r, 3)                    # (pass_fds keeps 3 and 4 open through exec)
+            os.dup2(w, 4)
+
+        self.proc = subprocess.Popen(argv, preexec_fn=fds_3_and_4, pass_fds=(3, 4),
+                                     start_new_session=True,  # its own process group
+                                     stdout=stderr, stderr=stderr)
+        for fd in (to_child, from_child):
+            os.close(fd)
+        self.next_id, self.waiting, self.lock, self.events = 0, {}, threading.Lock(), queue.Queue()
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        buf = b""
+        while chunk := os.read(self.resp, 1 << 16):
+            *messages, buf = (buf + chunk).split(b"\0")
+            for raw in messages:
+                msg = json.loads(raw)
+                (self.waiting.pop(msg["id"]) if "id" in msg else self.events).put(msg)
+        self.events.put({"method": "closed"})
+
+    def send(self, method, params=None, session=None, timeout=30):
+        with self.lock:
+            self.next_id += 1
+            msg = {"id": self.next_id, "method": method, "params": params or {}}
+            if session:
+                msg["sessionId"] = session
+            reply = self.waiting[self.next_id] = queue.Queue()
+            os.write(self.cmd, json.dumps(msg).encode() + b"\0")
+        try:
+            msg = reply.get(timeout=timeout)
+        except queue.Empty:
+            raise RuntimeError("no reply to %s within %ss" % (method, timeout))
+        if "error" in msg:
+            raise RuntimeError("%s: %s" % (method, msg["error"]))
+        return msg["result"]
+
+    def close(self):
+        """Browser.close, then SIGKILL to Chromium's process group if it lingers."""
+        if self.proc.returncode is not None:  # already gone (and reaped)
+            return
+        try:
+            self.send("Browser.close", timeout=5)
+            self.proc.wait(timeout=10)
+        except (OSError, RuntimeError, subprocess.TimeoutExpired):
+            os.killpg(self.proc.pid, signal.SIGKILL)  # not reaped yet, so the group is still ours
+            self.proc.wait()
+
+
+def remote_text(obj):
+    """A console argument (a CDP RemoteObject) as text."""
+    if "value" not in obj:
+        return obj.get("description") or obj.get("unserializableValue") or obj["type"]
+    return obj["value"] if isinstance(obj["value"], str) else json.dumps(obj["value"])
+
+
+def console_line(event):
+    """The text of a console/exception/log event, or None for other events."""
+    method, p = event.get("method"), event.get("params", {})
+    if method == "Runtime.consoleAPICalled":
+        return "console.%s: %s" % (p["type"], " ".join(remote_text(a) for a in p["args"]))
+    if method == "Runtime.exceptionThrown":
+        d = p["exceptionDetails"]
+        return "exception: %s" % (d.get("exception", {}).get("description") or d.get("text"))
+    if method == "Log.entryAdded":
+        e = p["entry"]
+        return "log.%s: %s %s" % (e["level"], e["text"], e.get("url", ""))
+    return None
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("site")
+    ap.add_argument("out")
+    ap.add_argument("--url-query", default="")
+    ap.add_argument("--expect", required=True, help="comma-separated file names")
+    ap.add_argument("--timeout", type=float, default=600, help="seconds")
+    ap.add_argument("--webgl2", action="store_true", help="no WebGPU flags: WebGL2 fallback")
+    ap.add_argument("--gpu-flags", default=None, help="Chromium's GPU flags instead of ours")
+    ap.add_argument("--headed", action="store_true",
+                    help="a window (run under xvfb-run): headless Chromium on SwiftShader loses "
+                    "the WebGPU device when it presents to a canvas")
+    args = ap.parse_args()
+    site, out = os.path.abspath(args.site), os.path.abspath(args.out)
+    expected = [name for name in args.expect.split(",") if name]
+    os.makedirs(out, exist_ok=True)
+    for name in set(expected) & set(os.listdir(out)):  # a stale copy would count as arrived,
+        os.remove(os.path.join(out, name))           # and the new one would be "NAME (1).png"
+    log = open(os.path.join(out, "console.log"), "w")
+
+    def say(text):
+        line = "[%7.1fs] %s" % (time.monotonic() - START, text[:300])
+        print(line, flush=True)
+        print(line, file=log, flush=True)
+
+    profile = tempfile.mkdtemp(prefix="web-chromium-")
+    flags = ([] if args.headed else ["--headless=new"]) + ["--no-sandbox", "--enable-unsafe-swiftshader",
+             "--window-size=640,360", "--remote-debugging-pipe", "--user-data-dir=" + profile,
+             "--no-first-run", "--no-default-browser-check"]
+    if args.gpu_flags is not None:
+        flags += args.gpu_flags.split()
+    elif not args.webgl2:
+        flags += ["--enable-unsafe-webgpu", "--use-webgpu-adapter=swiftshader",
+                  "--enable-features=Vulkan"]
+    stderr = open(os.path.join(out, "chromium.log"), "w")  # Chromium's own complaints (GPU...)
+    browser = Cdp([find_chromium()] + flags + ["about:blank"], stderr)  # before any thread
+    port = serve(site)
+    try:
+        sys.exit(run(browser, port, out, expected, args, say))
+    finally:
+        browser.close()
+        shutil.rmtree(profile, ignore_errors=True)
+
+
+def run(browser, port, out, expected, args, say):
+    browser.send("Browser.setDownloadBehavior",
+                 {"behavior": "allow", "downloadPath": out, "eventsEnabled": True})
+    target = browser.send("Target.createTarget", {"url": "about:blank"})["targetId"]
+    session = browser.send("Target.attachToTarget",
+                           {"targetId": target, "flatten": True})["sessionId"]
+    for domain in ("Runtime", "Log", "Page"):
+        browser.send(domain + ".enable", session=session)
+
+    def evaluate(expression):  # a busy page may not answer: that must not end the wait
+        try:
+            result = browser.send("Runtime.evaluate", {"expression": expression,
+                                  "awaitPromise": True}, session=session, timeout=10)["result"]
+            return remote_text(result)
+        except (OSError, RuntimeError) as e:
+            return "(no answer: %s)" % e
+
+    url = "http://127.0.0.1:%d/index.html" % port + ("?" + args.url_query) * bool(args.url_query)
+    say("chromium %s, opening %s" % (browser.send("Browser.getVersion")["product"], url))
+    browser.send("Page.navigate", {"url": url}, session=session)
+
+    names = {}          # download guid -> suggested file name
+    completed = set()   # file names whose download Chromium reports completed
+    sizes = {}          # file name -> (size, since when), for a download without events
+    deadline, next_report = START + args.timeout, time.monotonic() + 30
+    while True:
+        try:
+            event = browser.events.get(timeout=0.5)
+        except queue.Empty:
+            event = {}  # no event: still check the folder, the clock and Chromium
+        method, p = event.get("method"), event.get("params", {})
+        if (line := console_line(event)) is not None:
+            say(line)
+        elif method == "Page.loadEventFired" and event.get("sessionId") == session:
+            say("loaded; %s; webgl2 context: %s" % (evaluate(WEBGPU), evaluate(
+                "!!document.createElement('canvas').getContext('webgl2')")))
+        elif method == "Browser.downloadWillBegin":
+            names[p["guid"]] = p["suggestedFilename"]
+            say("download begins: %s" % p["suggestedFilename"])
+        elif method == "Browser.downloadProgress" and p["state"] != "inProgress":
+            name = names.get(p["guid"], p["guid"])
+            say("download %s: %s (%d bytes)" % (p["state"], name, p.get("receivedBytes", 0)))
+            if p["state"] == "completed":
+                if os.path.exists(os.path.join(out, p["guid"])):  # saved under its guid: rename
+                    os.replace(os.path.join(out, p["guid"]), os.path.join(out, name))
+                completed.add(name)
+        elif method == "closed" or browser.proc.poll() is not None:
+            say("FAIL: chromium exited (code %s)" % browser.proc.poll())
+            return 1
+
+        partial = any(f.endswith(".crdownload") for f in os.listdir(out))
+        done = []
+        for n in (n for n in expected if os.path.exists(os.path.join(out, n))):
+            size = os.path.getsize(os.path.join(out, n))
+            if sizes.get(n, (None,))[0] != size:
+                sizes[n] = (size, time.monotonic())
+            stable = size > 0 and time.monotonic() - sizes[n][1] > 2 and not partial
+            if n in completed or stable:
+                done.append(n)
+        if len(done) == len(expected):
+            say("all %d files are in %s: %s" % (len(done), out, ", ".join(done)))
+            return 0
+        now = time.monotonic()
+        if now >= deadline:
+            say("FAIL: timeout after %ss; missing %s (have %s); page title %r" % (
+                args.timeout, ", ".join(n for n in expected if n not in done),
+                ", ".join(done) or "nothing", evaluate("document.title")))
+            return 1
+        if now >= next_report:
+            next_report = now + 30
+            title = evaluate("document.title")
+            say("waiting: have [%s], page title %r" % (", ".join(done), title))
+            # The page (web/index.html) puts an uncaught error or a panic in its title.
+            if isinstance(title, str) and title.startswith("error"):
+                say("FAIL: the page failed: %s" % title)
+                return 1
+
+
+if __name__ == "__main__":
+    main()
