@@ -3,8 +3,9 @@
 
 On wasm, Bevy's `save_to_disk` encodes the PNG, wraps it in a Blob URL and clicks an
 `<a download="NAME.png">` link: each screenshot is a browser *download*. This script serves
-SITE_DIR over HTTP on 127.0.0.1, starts headless Chromium (WebGPU on SwiftShader, or with
-`--webgl2` no WebGPU flags so the page falls back to WebGL2), tells it through the Chrome
+SITE_DIR over HTTP on 127.0.0.1, starts Chromium (headless, or with `--headed` a window for
+xvfb-run; WebGPU on SwiftShader, `--webgl2` without the WebGPU flags for a WebGL2 build, or
+`--gpu-flags` of your own), tells it through the Chrome
 DevTools Protocol to accept downloads into OUT_DIR, opens index.html?QUERY, echoes the page's
 console (also to OUT_DIR/console.log; Chromium's stderr goes to OUT_DIR/chromium.log) and waits
 until every expected file has arrived.
@@ -14,6 +15,10 @@ CDP normally speaks WebSocket, which the standard library lacks, so Chromium is 
 fd 4, each message a JSON object terminated by a NUL byte.
 
 Usage: web.py SITE_DIR OUT_DIR [--url-query Q] --expect A.png,B.png [--timeout S] [--webgl2]
+              [--headed] [--gpu-flags "FLAGS"]
+
+On this project's GPU-less machines Chromium's WebGPU (SwiftShader) loses the device at the first
+frame a page presents to a canvas, headless and headed alike (docs/live.md, "Browsers").
 Exit 0 once all expected files are there; 1 on timeout (listing the missing) or if Chromium dies.
 """
 import argparse
@@ -65,10 +70,12 @@ class Cdp:
         def fds_3_and_4():                   # in the child, before exec
             r = fcntl.fcntl(to_child, fcntl.F_DUPFD, 10)  # out of the way of 3 and 4 first
             w = fcntl.fcntl(from_child, fcntl.F_DUPFD, 10)
-            os.dup2(r, 3)                    # (pass_fds keeps 3 and 4 open through exec)
+            os.dup2(r, 3)                    # dup2 makes 3 and 4 inheritable: they survive exec
             os.dup2(w, 4)
 
-        self.proc = subprocess.Popen(argv, preexec_fn=fds_3_and_4, pass_fds=(3, 4),
+        # close_fds=False rather than pass_fds=(3, 4): pass_fds needs 3 and 4 open in this
+        # process too. Nothing else leaks: Python opens every other file non-inheritable.
+        self.proc = subprocess.Popen(argv, preexec_fn=fds_3_and_4, close_fds=False,
                                      start_new_session=True,  # its own process group
                                      stdout=stderr, stderr=stderr)
         for fd in (to_child, from_child):
@@ -144,8 +151,7 @@ def main():
     ap.add_argument("--webgl2", action="store_true", help="no WebGPU flags: WebGL2 fallback")
     ap.add_argument("--gpu-flags", default=None, help="Chromium's GPU flags instead of ours")
     ap.add_argument("--headed", action="store_true",
-                    help="a window (run under xvfb-run): headless Chromium on SwiftShader loses "
-                    "the WebGPU device when it presents to a canvas")
+                    help="a window (run under xvfb-run) instead of headless")
     args = ap.parse_args()
     site, out = os.path.abspath(args.site), os.path.abspath(args.out)
     expected = [name for name in args.expect.split(",") if name]

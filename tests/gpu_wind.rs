@@ -268,7 +268,7 @@ fn run(case: &Case) -> (f32, f32) {
     let field = app.world().resource::<WindField>().clone();
     assert_eq!(field.source_count(), 5, "{}: blast or gust over", case.name);
     assert_eq!(field.shelter_count(), 2);
-    let t0 = field.time_seconds();
+    let t0 = field.time_f64();
 
     // Points over the field (±32 m), from the ground to 30 m, ±6 s of wind time.
     let mut rng = Points(0x5EED);

@@ -35,6 +35,13 @@ fn plugin_advances_wind_time_on_the_fixed_step_and_can_pause_or_scale() {
     }
     app.update();
     assert!((time(&app) - 12.0 * step).abs() < 1e-5);
+    // The clock in full, and under its old name (deprecated) the same.
+    let wind = app.world().resource::<WindField>();
+    assert!((wind.time_f64() - 12.0 * STEP.as_secs_f64()).abs() < 1e-6);
+    assert_eq!(wind.time(), wind.time_f64() as f32);
+    #[allow(deprecated)]
+    let old = wind.time_seconds();
+    assert_eq!(old.to_bits(), wind.time_f64().to_bits());
 }
 
 #[test]

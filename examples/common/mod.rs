@@ -17,7 +17,8 @@ use bevy::window::WindowResolution;
 /// Command-line options of the example scenes.
 #[derive(Resource, Clone, Debug, Default)]
 pub struct ExampleArgs {
-    /// Run this many frames, then exit; with a screenshot, take it after at least this many.
+    /// Run this many frames, then exit; with a screenshot, take it after this many frames
+    /// played once the renderer has caught up.
     pub frames: Option<u32>,
     /// Save a screenshot here once the scene has rendered, then exit.
     pub screenshot: Option<PathBuf>,
@@ -62,7 +63,8 @@ impl ExampleArgs {
 }
 
 /// The arguments after the program's name; on the web, the page's address as a command line:
-/// `index.html?scene=flag&tour=shots` reads as `--scene flag --tour shots`.
+/// `index.html?scene=flag&tour=shots` reads as `--scene flag --tour shots` (values are taken as
+/// written, not percent-decoded).
 fn command_line() -> Vec<String> {
     #[cfg(not(target_arch = "wasm32"))]
     let line = std::env::args().skip(1).collect();
@@ -87,14 +89,14 @@ fn command_line() -> Vec<String> {
 
 /// The game time one frame takes while recording. A software renderer takes 0.1–1.5 s a frame,
 /// and a clock that followed it would show each scene at a different moment on each run (a leaf
-/// storm that had half landed, or not yet): recorded frames each last 1/15 s of game time (four
-/// fixed steps), and none passes while shaders compile, so every screenshot shows its scene at
-/// the same moment, 4 s in.
-pub const RECORDED_FRAME: Duration = Duration::from_nanos(66_666_667);
+/// storm that had half landed, or not yet): recorded frames each last 62.5 ms of game time (four
+/// of Bevy's default 64 Hz fixed steps), and none passes while shaders compile, so every
+/// screenshot shows its scene at the same moment, 4 s in.
+pub const RECORDED_FRAME: Duration = Duration::from_micros(62_500);
 
 /// Software renderers show black frames while shaders compile: a screenshot waits until
 /// [`Readiness::ready`], then this many frames (or `--frames`) of [`RECORDED_FRAME`] each.
-pub const DEFAULT_SCREENSHOT_FRAME: u32 = 60;
+pub const DEFAULT_SCREENSHOT_FRAME: u32 = 64;
 
 /// Render pipelines still compiling, counted by the render world each frame.
 #[derive(Resource, Clone, Default)]
@@ -137,7 +139,8 @@ fn track_readiness(pending: Res<PendingPipelines>, mut readiness: ResMut<Readine
     }
 }
 
-/// While recording, the game's clock stands still until the renderer has caught up.
+/// While recording, the game's clock stands still until the renderer has caught up. Runs before
+/// Bevy's clock update, so game time passes in exactly the frames counted as played.
 fn hold_time_until_ready(readiness: Res<Readiness>, mut time: ResMut<Time<Virtual>>) {
     if readiness.ready() {
         time.unpause();
@@ -147,7 +150,7 @@ fn hold_time_until_ready(readiness: Res<Readiness>, mut time: ResMut<Time<Virtua
 }
 
 /// How CI renders an example (not needed in a game): `--screenshot PATH` saves the window once
-/// every render pipeline has compiled and 60 frames (or `--frames N`) have been played on the
+/// every render pipeline has compiled and 64 frames (or `--frames N`) have been played on the
 /// [`RECORDED_FRAME`] clock, and exits; `--window WxH` sizes the window; `--frames N` alone
 /// exits after N frames. Add it after `DefaultPlugins`.
 pub struct ScreenshotPlugin;
@@ -165,12 +168,17 @@ impl Plugin for ScreenshotPlugin {
         }
         if args.recording() {
             app.insert_resource(TimeUpdateStrategy::ManualDuration(RECORDED_FRAME))
-                .add_systems(First, hold_time_until_ready.after(track_readiness));
+                .add_systems(
+                    First,
+                    hold_time_until_ready
+                        .after(track_readiness)
+                        .before(bevy::time::TimeSystems),
+                );
         }
         app.insert_resource(args)
             .init_resource::<FrameCount>()
             .init_resource::<Readiness>()
-            .add_systems(First, track_readiness)
+            .add_systems(First, track_readiness.before(bevy::time::TimeSystems))
             .add_systems(Last, frames_and_screenshot);
         let pending = PendingPipelines::default();
         app.insert_resource(pending.clone());

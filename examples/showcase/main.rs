@@ -75,7 +75,7 @@ struct Hud;
 
 /// `--tour DIR`: where the screenshots go and how far the tour is. Each scene is saved once
 /// every render pipeline it needs has compiled (software renderers show black frames until then,
-/// and the game's clock stands still) and 60 frames have been played.
+/// and the game's clock stands still) and 64 frames have been played.
 #[derive(Resource)]
 struct Tour {
     dir: PathBuf,
@@ -250,6 +250,9 @@ fn tour(
         let scene = Scene::ALL[tour.next];
         let path = tour.dir.join(format!("showcase_{}.png", scene.name()));
         common::take_screenshot(&mut commands, path);
+        // The clock stands still from the request until the next scene has compiled: the
+        // screenshot's read-back takes a varying number of frames.
+        readiness.reset();
     }
     for entity in &done {
         commands.entity(entity).despawn();

@@ -118,7 +118,7 @@ fn quat(q: bevy::math::Quat) -> Vec4 {
 impl GpuWindParams {
     /// The parameters of `field` at its own clock.
     pub fn of(field: &WindField) -> Self {
-        let t0 = field.time_seconds();
+        let t0 = field.time_f64();
         let c = field.config();
         let dims = field.grid_dims();
         let evolving = matches!(c.temporal, TemporalMode::Evolving { .. });

@@ -290,7 +290,7 @@ fn place_wind_sources(
     if !(sheltering.is_empty() && wind.shelter_count() == 0) {
         wind.set_shelters(in_entity_order(sheltering));
     }
-    let now = wind.time_seconds();
+    let now = wind.time_f64();
     // A source added before this step has blown since the step began.
     let started = wind.step_start();
     let mut placed: Vec<(Entity, PlacedSource)> = Vec::new();

@@ -42,7 +42,7 @@ use super::field::WindField;
 pub struct WindSnapshot {
     /// The settings, seed included.
     pub config: WindConfig,
-    /// The wind clock, s ([`WindField::time_seconds`]).
+    /// The wind clock, s ([`WindField::time_f64`]).
     pub time: f64,
     /// [`WindField::time_scale`].
     pub time_scale: f32,
@@ -65,7 +65,7 @@ impl WindField {
     pub fn snapshot(&self) -> WindSnapshot {
         WindSnapshot {
             config: self.config().clone(),
-            time: self.time_seconds(),
+            time: self.time_f64(),
             time_scale: self.time_scale,
             paused: self.paused,
             drift: self.drift_base,

@@ -135,14 +135,24 @@ impl WindField {
         self.derive();
     }
 
-    /// Wind time, s.
+    /// Wind time, s, as f32 (as Bevy's `Time::elapsed_secs`); in full: [`Self::time_f64`].
     pub fn time(&self) -> f32 {
         self.time as f32
     }
 
-    /// Wind time, s, in full (the clock runs in f64 so that long sessions keep their precision).
-    pub fn time_seconds(&self) -> f64 {
+    /// Wind time, s, in full, as Bevy's `Time::elapsed_secs_f64` (the clock runs in f64 so that
+    /// long sessions keep their precision).
+    pub fn time_f64(&self) -> f64 {
         self.time
+    }
+
+    /// Wind time, s, in full: the old name of [`Self::time_f64`].
+    #[deprecated(
+        since = "0.2.0",
+        note = "renamed to `time_f64` (as Bevy's `Time::elapsed_secs_f64`)"
+    )]
+    pub fn time_seconds(&self) -> f64 {
+        self.time_f64()
     }
 
     /// Sets the wind clock to `time` seconds, clamped to ±[`WindField::MAX_CLOCK`](crate::wind::WindField::MAX_CLOCK) (a non-finite time is
