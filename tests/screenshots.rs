@@ -66,12 +66,12 @@ fn leaf_specks(frame: &Frame) -> f64 {
 /// Why an example's (or the newcomer's) frame does not show what it is about: a flag (red), a
 /// physical cloth (blue), leaves (autumn specks) or grass.
 fn content_reason(name: &str, frame: &Frame) -> Option<String> {
-    let (red, blue) = fabric_shares(frame);
+    let (_, blue) = fabric_shares(frame);
     let specks = leaf_specks(frame);
     let wants = |topics: &[&str]| topics.iter().any(|t| name.contains(t));
     let mut missing = Vec::new();
-    if wants(&["_flag", "curtain", "inspector", "newcomer"]) && red < 0.002 {
-        missing.push(format!("no red flag: {:.2} % red", red * 100.0));
+    if wants(&["_flag", "curtain", "inspector", "newcomer"]) {
+        missing.extend(red_flag_reason(frame));
     }
     if wants(&["physical_flag", "newcomer"]) && blue < 0.002 {
         missing.push(format!(
@@ -88,6 +88,12 @@ fn content_reason(name: &str, frame: &Frame) -> Option<String> {
         missing.extend(grass_reason(frame));
     }
     (!missing.is_empty()).then(|| missing.join("; "))
+}
+
+/// Why a frame shows no red flag (the default cloth fabric): under 0.2 % red.
+fn red_flag_reason(frame: &Frame) -> Option<String> {
+    let (red, _) = fabric_shares(frame);
+    (red < 0.002).then(|| format!("no red flag: {:.2} % red", red * 100.0))
 }
 
 /// An RGB frame.
@@ -289,8 +295,7 @@ fn showcase_reason(name: &str, frame: &Frame) -> Option<String> {
         if name.contains("leaves") {
             storm_reason(frame)
         } else if name.contains("flag") {
-            let (red, _) = fabric_shares(frame);
-            (red < 0.002).then(|| format!("no red flag: {:.2} % red", red * 100.0))
+            red_flag_reason(frame)
         } else if name.contains("gallery") {
             let hues = trail_hues(frame);
             (hues < 5).then(|| format!("trails of {hues} colours (≥ 5)"))

@@ -114,6 +114,8 @@ fn count_pending_pipelines(cache: Res<PipelineCache>, pending: Res<PendingPipeli
 #[derive(Resource, Default)]
 pub struct Readiness {
     calm_frames: u32,
+    /// Frames played since the renderer caught up (the recording clock runs in these only).
+    played: u32,
 }
 
 impl Readiness {
@@ -125,9 +127,15 @@ impl Readiness {
         self.calm_frames >= Self::CALM
     }
 
+    /// Frames played since [`Self::ready`] turned true (since the last [`Self::reset`]).
+    pub fn played(&self) -> u32 {
+        self.played
+    }
+
     /// Starts counting again (a new scene brings new pipelines).
     pub fn reset(&mut self) {
         self.calm_frames = 0;
+        self.played = 0;
     }
 }
 
@@ -137,6 +145,7 @@ fn track_readiness(pending: Res<PendingPipelines>, mut readiness: ResMut<Readine
     } else {
         readiness.calm_frames = 0;
     }
+    readiness.played += u32::from(readiness.ready());
 }
 
 /// While recording, the game's clock stands still until the renderer has caught up. Runs before
@@ -211,8 +220,6 @@ pub fn example_app(title: &str) -> App {
 #[derive(Resource, Default)]
 struct FrameCount {
     frames: u32,
-    /// Frames played since the renderer caught up.
-    played: u32,
     requested: bool,
 }
 
@@ -240,9 +247,8 @@ fn frames_and_screenshot(
 ) {
     count.frames += 1;
     if let Some(path) = &args.screenshot {
-        count.played += u32::from(readiness.ready());
         let at = args.frames.unwrap_or(DEFAULT_SCREENSHOT_FRAME);
-        if count.played >= at && !count.requested {
+        if readiness.played() >= at && !count.requested {
             count.requested = true;
             take_screenshot(&mut commands, path.clone());
         }

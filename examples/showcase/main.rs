@@ -81,8 +81,6 @@ struct Tour {
     dir: PathBuf,
     next: usize,
     frames_in_scene: u32,
-    /// Frames played since the scene's pipelines compiled.
-    played: u32,
     requested: bool,
 }
 
@@ -123,7 +121,6 @@ fn main() {
             dir,
             next: 0,
             frames_in_scene: 0,
-            played: 0,
             requested: false,
         })
         .insert_state(Scene::ALL[0])
@@ -244,8 +241,7 @@ fn tour(
     if tour.frames_in_scene.is_multiple_of(50) {
         info!("tour: scene {}, frame {}", tour.next, tour.frames_in_scene);
     }
-    tour.played += u32::from(readiness.ready());
-    if tour.played >= common::DEFAULT_SCREENSHOT_FRAME && !tour.requested {
+    if readiness.played() >= common::DEFAULT_SCREENSHOT_FRAME && !tour.requested {
         tour.requested = true;
         let scene = Scene::ALL[tour.next];
         let path = tour.dir.join(format!("showcase_{}.png", scene.name()));
@@ -258,7 +254,6 @@ fn tour(
         commands.entity(entity).despawn();
         tour.next += 1;
         tour.frames_in_scene = 0;
-        tour.played = 0;
         tour.requested = false;
         match Scene::ALL.get(tour.next) {
             Some(&scene) => next.set(scene),
