@@ -15,7 +15,7 @@ CDP normally speaks WebSocket, which the standard library lacks, so Chromium is 
 fd 4, each message a JSON object terminated by a NUL byte.
 
 Usage: web.py SITE_DIR OUT_DIR [--url-query Q] --expect A.png,B.png [--timeout S] [--webgl2]
-              [--headed] [--gpu-flags "FLAGS"]
+              [--viewport WxH] [--headed] [--gpu-flags "FLAGS"]
 
 On this project's GPU-less machines Chromium's WebGPU (SwiftShader) loses the device at the first
 frame a page presents to a canvas, headless and headed alike (docs/live.md, "Browsers").
@@ -149,6 +149,7 @@ def main():
     ap.add_argument("--expect", required=True, help="comma-separated file names")
     ap.add_argument("--timeout", type=float, default=600, help="seconds")
     ap.add_argument("--webgl2", action="store_true", help="no WebGPU flags: WebGL2 fallback")
+    ap.add_argument("--viewport", default="640x360", help="the page's size, WxH")
     ap.add_argument("--gpu-flags", default=None, help="Chromium's GPU flags instead of ours")
     ap.add_argument("--headed", action="store_true",
                     help="a window (run under xvfb-run) instead of headless")
@@ -192,6 +193,11 @@ def run(browser, port, out, expected, args, say):
                            {"targetId": target, "flatten": True})["sessionId"]
     for domain in ("Runtime", "Log", "Page"):
         browser.send(domain + ".enable", session=session)
+    # The page's viewport, as the native examples' window (--window-size counts the browser's
+    # frame too).
+    width, height = (int(v) for v in args.viewport.split("x"))
+    browser.send("Emulation.setDeviceMetricsOverride", {"width": width, "height": height,
+                 "deviceScaleFactor": 1, "mobile": False}, session=session)
 
     def evaluate(expression):  # a busy page may not answer: that must not end the wait
         try:

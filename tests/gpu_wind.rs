@@ -2,7 +2,9 @@
 //! of the WGSL module `bevy_windfall::wind` at 4096 points spread over the field, its heights
 //! and ±6 s of wind time, in the four modes (plane and volume, frozen and evolving), with every
 //! kind of local source, a wall and a room, a pulse and an eased wind late in a session; the
-//! results are read back and compared with `WindField::velocity_at`.
+//! results are read back and compared with `WindField::velocity_at`. Two cases run on a device
+//! with three storage buffers a stage, where the wind is read from a texture and a uniform
+//! buffer (`GpuLayout::Texture`, as on WebGL2).
 //!
 //! Runs on any Vulkan, Metal or DX12 device, and on Mesa's software Vulkan (lavapipe) without a
 //! window or a GPU: `WGPU_BACKEND=vulkan cargo test --features render --test gpu_wind`.
@@ -11,6 +13,7 @@ use std::sync::{Arc, Mutex};
 
 use bevy::app::PluginsState;
 use bevy::prelude::*;
+use bevy::render::error_handler::{RenderErrorHandler, RenderErrorPolicy};
 use bevy::render::extract_resource::{ExtractResource, ExtractResourcePlugin};
 use bevy::render::gpu_readback::{Readback, ReadbackComplete};
 use bevy::render::pipelined_rendering::PipelinedRenderingPlugin;
@@ -19,12 +22,14 @@ use bevy::render::render_resource::binding_types::storage_buffer_read_only_sized
 use bevy::render::render_resource::binding_types::storage_buffer_sized;
 use bevy::render::render_resource::*;
 use bevy::render::renderer::{RenderContext, RenderDevice, RenderGraph};
+use bevy::render::settings::{WgpuLimits, WgpuSettings};
 use bevy::render::storage::{GpuShaderBuffer, ShaderBuffer};
+use bevy::render::texture::GpuImage;
 use bevy::render::{Render, RenderApp, RenderPlugin, RenderSystems};
 use bevy::shader::ShaderDefVal;
 use bevy::time::TimeUpdateStrategy;
 use bevy::window::ExitCondition;
-use bevy_windfall::gpu::{WindGpuBuffers, WindGpuPlugin, WindGpuUploads};
+use bevy_windfall::gpu::{GpuLayout, WindGpuBuffers, WindGpuPlugin, WindGpuUploads};
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::{Pulse, WindShelter, WindSource};
 
@@ -61,19 +66,25 @@ struct ProbePipeline {
     pipeline: CachedComputePipelineId,
 }
 
-fn queue_pipeline(mut commands: Commands, probe: Res<Probe>, cache: Res<PipelineCache>) {
-    let layout = BindGroupLayoutDescriptor::new(
-        "wind probe",
-        &BindGroupLayoutEntries::with_indices(
-            ShaderStages::COMPUTE,
-            (
-                (0, storage_buffer_read_only_sized(false, None)),
-                (1, storage_buffer_sized(false, None)),
-                (100, storage_buffer_read_only_sized(false, None)),
-                (101, storage_buffer_read_only_sized(false, None)),
-            ),
+fn queue_pipeline(
+    mut commands: Commands,
+    probe: Res<Probe>,
+    cache: Res<PipelineCache>,
+    device: Res<RenderDevice>,
+) {
+    let mut entries = BindGroupLayoutEntries::with_indices(
+        ShaderStages::COMPUTE,
+        (
+            (0, storage_buffer_read_only_sized(false, None)),
+            (1, storage_buffer_sized(false, None)),
         ),
-    );
+    )
+    .to_vec();
+    entries.extend(WindGpuBuffers::layout_entries(
+        &device,
+        ShaderStages::COMPUTE,
+    ));
+    let layout = BindGroupLayoutDescriptor::new("wind probe", &entries);
     let pipeline = cache.queue_compute_pipeline(ComputePipelineDescriptor {
         label: Some("wind probe".into()),
         layout: vec![layout.clone()],
@@ -94,26 +105,28 @@ fn prepare_bind_group(
     cache: Res<PipelineCache>,
     device: Res<RenderDevice>,
     buffers: Res<RenderAssets<GpuShaderBuffer>>,
+    images: Res<RenderAssets<GpuImage>>,
 ) {
     let get = |h: &Handle<ShaderBuffer>| buffers.get(h).map(|b| b.buffer.as_entire_binding());
-    let (Some(points), Some(velocities), Some(nodes), Some(params)) = (
+    let (Some(points), Some(velocities), Ok([nodes, params])) = (
         get(&probe.points),
         get(&probe.velocities),
-        get(&probe.wind.nodes),
-        get(&probe.wind.params),
+        probe.wind.bindings(&images, &buffers),
     ) else {
         commands.remove_resource::<ProbeBindGroup>();
         return;
     };
+    let mut entries = BindGroupEntries::with_indices(((0, points), (1, velocities))).to_vec();
+    for (binding, resource) in [&nodes, &params] {
+        entries.push(BindGroupEntry {
+            binding: *binding,
+            resource: resource.get_binding(),
+        });
+    }
     let group = device.create_bind_group(
         None,
         &cache.get_bind_group_layout(&pipeline.layout),
-        &BindGroupEntries::with_indices((
-            (0, points),
-            (1, velocities),
-            (100, nodes),
-            (101, params),
-        )),
+        &entries,
     );
     commands.insert_resource(ProbeBindGroup(group));
 }
@@ -165,7 +178,16 @@ impl Points {
     }
 }
 
-fn headless_render_app(config: WindConfig) -> App {
+/// An app that renders nothing, on a device whose limits choose `layout`.
+fn headless_render_app(config: WindConfig, layout: GpuLayout) -> App {
+    let mut settings = WgpuSettings::default();
+    if layout == GpuLayout::Texture {
+        // Three storage buffers a stage: fewer than the wind asks for.
+        settings.constrained_limits = Some(WgpuLimits {
+            max_storage_buffers_per_shader_stage: 3,
+            ..WgpuLimits::default()
+        });
+    }
     let mut app = App::new();
     let plugins = DefaultPlugins
         .set(WindowPlugin {
@@ -175,6 +197,12 @@ fn headless_render_app(config: WindConfig) -> App {
         })
         .set(RenderPlugin {
             synchronous_pipeline_compilation: true,
+            render_creation: settings.into(),
+            ..default()
+        })
+        // Bevy's GPU mesh preprocessing asks for five storage buffers a stage.
+        .set(bevy::pbr::PbrPlugin {
+            use_gpu_instance_buffer_builder: layout == GpuLayout::Storage,
             ..default()
         })
         .disable::<PipelinedRenderingPlugin>()
@@ -185,6 +213,11 @@ fn headless_render_app(config: WindConfig) -> App {
         .add_plugins((WindPlugin::new(config), WindGpuPlugin))
         .add_plugins(ExtractResourcePlugin::<Probe>::default())
         .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
+    // Without the log: a wgpu error's whole text (the default handler logs its kind only).
+    app.insert_resource(RenderErrorHandler(|error, _, _| {
+        eprintln!("render error: {}", error.description);
+        RenderErrorPolicy::StopRendering
+    }));
     // The probe's pass, once its buffers exist (the test inserts `Probe` later).
     app.sub_app_mut(RenderApp)
         .add_systems(
@@ -210,11 +243,13 @@ struct Case {
     clock: f64,
     /// An easing in progress: (speed, direction, τ).
     ease: Option<(f32, Vec2, f32)>,
+    /// Storage buffers, or a texture and a uniform buffer (WebGL2).
+    layout: GpuLayout,
 }
 
 /// Runs one case; returns the largest |GPU − CPU| and the tolerance.
 fn run(case: &Case) -> (f32, f32) {
-    let mut app = headless_render_app(case.config.clone());
+    let mut app = headless_render_app(case.config.clone(), case.layout);
     while app.plugins_state() == PluginsState::Adding {
         bevy::tasks::tick_global_task_pools_on_main_thread();
     }
@@ -296,6 +331,11 @@ fn run(case: &Case) -> (f32, f32) {
     out.buffer_description.usage |= BufferUsages::COPY_SRC;
     let velocities = buffers.add(out);
     let wind = world.resource::<WindGpuBuffers>().clone();
+    assert_eq!(
+        wind.layout, case.layout,
+        "{}: the device's layout",
+        case.name
+    );
     world.insert_resource(Probe {
         shader,
         points: points_buffer,
@@ -355,10 +395,13 @@ fn run(case: &Case) -> (f32, f32) {
         TemporalMode::Evolving { samples, .. } => samples,
         TemporalMode::Frozen => 1,
     };
-    assert_eq!(
-        uploads.node_bytes,
-        12 * c.grid[0] * c.grid[1] * vertical * samples
-    );
+    let nodes = c.grid[0] * c.grid[1] * vertical * samples;
+    // A storage buffer holds 3 floats a node; a texture 4 a texel, in rows of up to 2048.
+    let bytes = match case.layout {
+        GpuLayout::Storage => 12 * nodes,
+        GpuLayout::Texture => 16 * nodes,
+    };
+    assert_eq!(uploads.node_bytes, bytes, "{}", case.name);
     println!(
         "{}: {} B of nodes once, {} B of parameters a frame",
         case.name, uploads.node_bytes, uploads.param_bytes
@@ -419,6 +462,7 @@ fn the_gpu_samples_the_same_wind_as_the_cpu() {
             config: plane.clone(),
             clock: 0.0,
             ease: None,
+            layout: GpuLayout::Storage,
         },
         Case {
             name: "plane, evolving, pulsing, easing an hour in",
@@ -430,6 +474,7 @@ fn the_gpu_samples_the_same_wind_as_the_cpu() {
             },
             clock: 3600.25,
             ease: Some((9.0, Vec2::new(-0.2, 1.0), 2.0)),
+            layout: GpuLayout::Storage,
         },
         Case {
             name: "volume, frozen, ten minutes in",
@@ -439,6 +484,7 @@ fn the_gpu_samples_the_same_wind_as_the_cpu() {
             },
             clock: 600.0,
             ease: Some((4.0, Vec2::new(0.0, -1.0), 1.0)),
+            layout: GpuLayout::Storage,
         },
         Case {
             name: "volume, evolving",
@@ -450,6 +496,32 @@ fn the_gpu_samples_the_same_wind_as_the_cpu() {
             },
             clock: 42.0,
             ease: None,
+            layout: GpuLayout::Storage,
+        },
+        Case {
+            name: "WebGL2 layout: plane, evolving, pulsing, easing an hour in",
+            config: WindConfig {
+                temporal: evolving,
+                direction: Vec2::new(1.0, 0.6),
+                pulse: Pulse::new(0.3, 0.2),
+                grid: [48, 40],
+                ..plane.clone()
+            },
+            clock: 3600.25,
+            ease: Some((9.0, Vec2::new(-0.2, 1.0), 2.0)),
+            layout: GpuLayout::Texture,
+        },
+        Case {
+            name: "WebGL2 layout: volume, evolving",
+            config: WindConfig {
+                spatial: volume,
+                temporal: evolving,
+                beta: 2.5,
+                ..plane.clone()
+            },
+            clock: 42.0,
+            ease: None,
+            layout: GpuLayout::Texture,
         },
     ];
     for case in &cases {

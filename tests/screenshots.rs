@@ -426,6 +426,32 @@ fn every_example_screenshot_shows_its_scene() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// The showcase as a browser drew it: CI builds it for WebGL2 (`web/build.sh`), opens it in
+/// headless Chromium on SwiftShader (`.ci/web.py`), and the tour saves each scene into
+/// `$WINDFALL_WEB_SCREENSHOTS`; each must pass the native scene's check.
+#[test]
+#[ignore = "needs the browser's screenshots CI takes; run with -- --ignored"]
+fn every_web_screenshot_shows_its_scene() {
+    let dir = std::env::var_os("WINDFALL_WEB_SCREENSHOTS")
+        .map_or_else(|| PathBuf::from("target/web-screenshots"), PathBuf::from);
+    let failures: Vec<String> = EXPECTED
+        .iter()
+        .filter(|name| name.starts_with("showcase_"))
+        .filter_map(|name| {
+            let reason = load(&dir.join(name)).map_or_else(Some, |frame| {
+                println!(
+                    "web {name}: {:.1} leaf specks per 1000 sky pixels, trails of {} colours",
+                    storm_specks(&frame),
+                    trail_hues(&frame)
+                );
+                showcase_reason(name, &frame)
+            });
+            reason.map(|r| format!("web {name}: {r}"))
+        })
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// The examples' content check: sky and ground alone are refused for the flag, the physical
 /// flag and the leaves, and accepted once a red flag, a blue cloth and leaf specks are drawn.
 #[test]

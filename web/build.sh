@@ -1,13 +1,21 @@
 #!/bin/sh
-# The showcase for the browser: `web/build.sh` builds it for WebGPU into target/web/webgpu
+# The showcase for the browser: `web/build.sh [webgl2|webgpu]` builds it into target/web/BACKEND
 # (index.html, showcase.js, showcase_bg.wasm), a static folder any file server can serve:
-#   python3 -m http.server -d target/web/webgpu 8000    then open http://127.0.0.1:8000
-# It installs what it needs when missing: the wasm32 target and wasm-bindgen-cli (the version in
-# Cargo.lock); wasm-opt (binaryen 116 or later) shrinks the result when it is on the PATH.
+#   python3 -m http.server -d target/web/webgl2 8000    then open http://127.0.0.1:8000
+# webgl2 (the default) runs in every browser; webgpu needs a browser with WebGPU. Bevy picks its
+# backend at build time; the crate's shaders pick storage buffers or textures at run time
+# (`GpuLayout`). It installs what it needs when missing: the wasm32 target and wasm-bindgen-cli
+# (the version in Cargo.lock); wasm-opt (binaryen 116 or later) shrinks the result when it is on
+# the PATH.
 set -eu
-# WebGL2 is not offered: the wind's GPU module and the leaf cloud read storage buffers in the
-# vertex shader, which WebGL2 does not have (docs/live.md, "Browsers").
-backend=webgpu
+backend=${1:-webgl2}
+case "$backend" in
+webgl2 | webgpu) ;;
+*)
+    echo "usage: web/build.sh [webgl2|webgpu]" >&2
+    exit 2
+    ;;
+esac
 cd "$(dirname "$0")/.."
 rustup target add wasm32-unknown-unknown >/dev/null
 version=$(sed -n '/^name = "wasm-bindgen"$/{n;s/^version = "\(.*\)"$/\1/p;}' Cargo.lock)

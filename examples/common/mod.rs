@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
 use bevy::prelude::*;
-use bevy::render::render_resource::PipelineCache;
+use bevy::render::render_resource::{PipelineCache, PipelineDescriptor};
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
 use bevy::render::{Render, RenderApp, RenderSystems};
 use bevy::time::TimeUpdateStrategy;
@@ -102,10 +102,23 @@ pub const DEFAULT_SCREENSHOT_FRAME: u32 = 64;
 #[derive(Resource, Clone, Default)]
 struct PendingPipelines(Arc<AtomicUsize>);
 
+/// Counts only render pipelines: a compute pipeline the device cannot run (Bevy's sparse buffer
+/// update under WebGL2's limits) is queued again every frame and would never let a scene count
+/// as rendered.
 fn count_pending_pipelines(cache: Res<PipelineCache>, pending: Res<PendingPipelines>) {
-    pending
-        .0
-        .store(cache.waiting_pipelines().count(), Ordering::Relaxed);
+    let pipelines: Vec<_> = cache.pipelines().collect();
+    let waiting = cache
+        .waiting_pipelines()
+        .filter(|&id| {
+            pipelines.get(id).is_some_and(|p| {
+                matches!(
+                    p.descriptor,
+                    PipelineDescriptor::RenderPipelineDescriptor(_)
+                )
+            })
+        })
+        .count();
+    pending.0.store(waiting, Ordering::Relaxed);
 }
 
 /// Whether the renderer has caught up: no pipeline has been waiting for the last

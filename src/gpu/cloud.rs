@@ -15,15 +15,26 @@ use bevy::asset::{Asset, Assets, Handle, RenderAssetUsages};
 use bevy::camera::visibility::NoFrustumCulling;
 use bevy::color::{Color, LinearRgba};
 use bevy::ecs::prelude::*;
+use bevy::ecs::system::SystemParamItem;
+use bevy::ecs::system::lifetimeless::SRes;
+use bevy::image::Image;
 use bevy::math::Vec3;
 use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
 use bevy::pbr::{ExtendedMaterial, MaterialExtension, MeshMaterial3d, StandardMaterial};
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
-use bevy::render::render_resource::AsBindGroup;
-use bevy::render::render_resource::Face;
-use bevy::render::storage::ShaderBuffer;
+use bevy::render::render_asset::RenderAssets;
+use bevy::render::render_resource::{
+    AsBindGroup, AsBindGroupError, BindGroupLayout, BindGroupLayoutEntry, BindingResources, Face,
+    ShaderStages, UnpreparedBindGroup,
+};
+use bevy::render::renderer::RenderDevice;
+use bevy::render::storage::{GpuShaderBuffer, ShaderBuffer};
+use bevy::render::texture::GpuImage;
 use bevy::shader::ShaderRef;
+
+use super::GpuLayout;
+use super::layout::{bound_buffer, bound_texture, record_texture, texture_width};
 
 use crate::freefall::cloud::LeafPose;
 use crate::freefall::{
@@ -36,13 +47,54 @@ pub type LeafCloudMaterial = ExtendedMaterial<StandardMaterial, CloudPoses>;
 /// Bytes of one leaf's pose: position and scale, then the rotation, as 8 × f32.
 pub(crate) const POSE_BYTES: usize = 32;
 
-/// The material extension: the buffer of poses.
-#[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
+/// The material extension: the leaves' poses, bound at 103.
+#[derive(Asset, Clone, Debug, Reflect)]
 pub struct CloudPoses {
-    /// `count` × (position.xyz, scale, rotation.xyzw), f32.
-    #[storage(103, read_only, visibility(vertex))]
+    /// `count` × (position.xyz, scale, rotation.xyzw), f32 ([`GpuLayout::Storage`]).
     #[reflect(ignore)]
     pub poses: Handle<ShaderBuffer>,
+    /// The same, two RGBA32F texels a leaf, rows of an even width ([`GpuLayout::Texture`]).
+    #[reflect(ignore)]
+    pub pose_texture: Handle<Image>,
+    /// Which of the two the shader reads.
+    pub layout: GpuLayout,
+}
+
+impl AsBindGroup for CloudPoses {
+    type Data = ();
+    type Param = (
+        SRes<RenderAssets<GpuImage>>,
+        SRes<RenderAssets<GpuShaderBuffer>>,
+    );
+
+    fn label() -> &'static str {
+        "CloudPoses"
+    }
+
+    fn bind_group_data(&self) -> Self::Data {}
+
+    fn unprepared_bind_group(
+        &self,
+        _layout: &BindGroupLayout,
+        _device: &RenderDevice,
+        (images, buffers): &mut SystemParamItem<'_, '_, Self::Param>,
+        _force_no_bindless: bool,
+    ) -> Result<UnpreparedBindGroup, AsBindGroupError> {
+        let poses = match self.layout {
+            GpuLayout::Storage => bound_buffer(buffers, &self.poses)?,
+            GpuLayout::Texture => bound_texture(images, &self.pose_texture)?,
+        };
+        Ok(UnpreparedBindGroup {
+            bindings: BindingResources(vec![(103, poses)]),
+        })
+    }
+
+    fn bind_group_layout_entries(
+        device: &RenderDevice,
+        _force_no_bindless: bool,
+    ) -> Vec<BindGroupLayoutEntry> {
+        vec![GpuLayout::of(device).array_entry(103, ShaderStages::VERTEX)]
+    }
 }
 
 impl MaterialExtension for CloudPoses {
@@ -93,8 +145,8 @@ impl Default for LeafCloudLook {
 /// What the plugin made for a cloud: its pose buffer and what its mesh was built for.
 #[derive(Component, Clone, Debug)]
 pub(crate) struct LeafCloudVisual {
-    /// The poses ([`CloudPoses::poses`]).
-    pub poses: Handle<ShaderBuffer>,
+    /// The poses ([`CloudPoses::poses`], [`CloudPoses::pose_texture`]).
+    poses: CloudPoses,
     /// Leaves drawn.
     count: usize,
     /// The object's shape and look.
@@ -168,7 +220,13 @@ fn attach_visuals(
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<LeafCloudMaterial>>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
+    mut images: ResMut<Assets<Image>>,
+    device: Option<Res<RenderDevice>>,
 ) {
+    let layout = device
+        .as_ref()
+        .map_or(GpuLayout::Storage, |d| GpuLayout::of(d));
+    let max_width = device.map_or(2048, |d| d.limits().max_texture_dimension_2d);
     for (entity, cloud, state, look, visual) in &clouds {
         // An invalid cloud (its error is in `LeafCloudInvalid`) has nothing to draw.
         let Some(leaves) = state.leaves() else {
@@ -188,10 +246,22 @@ fn attach_visuals(
                 leaves.len()
             );
         }
-        let poses = buffers.add(ShaderBuffer::new(
-            &vec![0; count.max(1) * POSE_BYTES],
-            RenderAssetUsages::RENDER_WORLD,
-        ));
+        let bytes = vec![0; count.max(1) * POSE_BYTES];
+        let poses = match layout {
+            GpuLayout::Storage => CloudPoses {
+                poses: buffers.add(ShaderBuffer::new(&bytes, RenderAssetUsages::RENDER_WORLD)),
+                pose_texture: Handle::default(),
+                layout,
+            },
+            GpuLayout::Texture => CloudPoses {
+                poses: Handle::default(),
+                pose_texture: images.add(record_texture(
+                    bytes,
+                    texture_width(count.max(1) * POSE_BYTES / 16, max_width),
+                )),
+                layout,
+            },
+        };
         let material = materials.add(LeafCloudMaterial {
             base: StandardMaterial {
                 base_color: Color::WHITE,
@@ -202,9 +272,7 @@ fn attach_visuals(
                 cull_mode: None::<Face>,
                 ..Default::default()
             },
-            extension: CloudPoses {
-                poses: poses.clone(),
-            },
+            extension: poses.clone(),
         });
         let mesh = meshes.add(cloud_mesh(&cloud.object, count as u32, &look));
         commands.entity(entity).insert((
@@ -221,10 +289,12 @@ fn attach_visuals(
     }
 }
 
-/// Copies each cloud's poses into its buffer (written in place: the bind group stays valid).
+/// Copies each cloud's poses into its buffer or texture (written in place: the bind group
+/// stays valid).
 fn write_poses(
     clouds: Query<(&LeafCloudState, &LeafCloudVisual)>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
+    mut images: ResMut<Assets<Image>>,
 ) {
     for (state, visual) in &clouds {
         let poses = state.poses();
@@ -232,15 +302,28 @@ fn write_poses(
             continue;
         }
         let poses = &poses[..visual.count];
-        let Some(mut buffer) = buffers.get_mut(&visual.poses) else {
-            continue;
+        let (data, size) = match visual.poses.layout {
+            GpuLayout::Storage => match buffers.get_mut(&visual.poses.poses) {
+                Some(buffer) => (&mut buffer.into_inner().data, poses.len() * POSE_BYTES),
+                None => continue,
+            },
+            GpuLayout::Texture => match images.get_mut(&visual.poses.pose_texture) {
+                Some(image) => {
+                    let image = image.into_inner();
+                    let size = (image.width() * image.height()) as usize * 16;
+                    (&mut image.data, size)
+                }
+                None => continue,
+            },
         };
-        let data = buffer.data.get_or_insert_with(Vec::new);
+        let data = data.get_or_insert_with(Vec::new);
         data.clear();
-        data.reserve(poses.len() * POSE_BYTES);
+        data.reserve(size);
         for pose in poses {
             pack_pose(pose, data);
         }
+        // A texture's last row is padded.
+        data.resize(size, 0);
     }
 }
 

@@ -1,6 +1,6 @@
 // Vertex shader of `LeafCloudMaterial`: one mesh holds every leaf of a cloud at the origin,
 // each vertex tagged with its leaf's index (the second UV set's x); the leaf's pose (position,
-// rotation) is read from a storage buffer written once per frame. See `src/gpu/cloud.rs`.
+// rotation) is read from a storage buffer (or a texture) written once per frame. See `src/gpu/cloud.rs`.
 #import bevy_pbr::{
     forward_io::{Vertex, VertexOutput},
     view_transformations::position_world_to_clip,
@@ -15,7 +15,27 @@ struct LeafPose {
 }
 
 // Binding 103: 100 and 101 stay free for the wind (`bevy_windfall::wind`), 102 is the sway's.
+// A storage buffer where the device has them (`GpuLayout::of`), else (WebGL2) an RGBA32F
+// texture, two texels a leaf in rows of an even width.
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 4
 @group(#{MATERIAL_BIND_GROUP}) @binding(103) var<storage, read> leaf_poses: array<LeafPose>;
+
+fn leaf_pose(leaf: u32) -> LeafPose {
+    return leaf_poses[min(leaf, arrayLength(&leaf_poses) - 1u)];
+}
+#else
+@group(#{MATERIAL_BIND_GROUP}) @binding(103) var leaf_pose_texture: texture_2d<f32>;
+
+fn leaf_pose(leaf: u32) -> LeafPose {
+    let size = textureDimensions(leaf_pose_texture);
+    let k = min(2u * leaf, size.x * size.y - 2u);
+    let at = vec2<u32>(k % size.x, k / size.x);
+    return LeafPose(
+        textureLoad(leaf_pose_texture, at, 0),
+        textureLoad(leaf_pose_texture, at + vec2<u32>(1u, 0u), 0),
+    );
+}
+#endif
 
 @vertex
 fn vertex(vertex: Vertex) -> VertexOutput {
@@ -25,7 +45,7 @@ fn vertex(vertex: Vertex) -> VertexOutput {
 #else
     let leaf = 0u;
 #endif
-    let pose = leaf_poses[min(leaf, arrayLength(&leaf_poses) - 1u)];
+    let pose = leaf_pose(leaf);
     let world = pose.position.xyz + rotate_by_quat(pose.rotation, vertex.position * pose.position.w);
     out.world_position = vec4<f32>(world, 1.0);
     out.position = position_world_to_clip(world);

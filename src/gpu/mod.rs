@@ -5,14 +5,19 @@
 //! and local sources. Grass, foliage and particles then sway in the very gusts that carry the
 //! falling leaves.
 //!
-//! | buffer | binding | contents | uploaded |
-//! |---|---|---|---|
-//! | `wind_nodes` | 100 | the turbulence nodes, 3 × f32 each | when the field is built or rebuilt |
-//! | `wind_params` | 101 | the field's parameters: clock, log-law constants, σ's, travel, pulse, ≤ 64 shelters and sources | every frame (7 280 B) |
+//! | binding | contents | uploaded |
+//! |---|---|---|
+//! | 100 `wind_nodes` | the turbulence nodes, 3 × f32 each | when the field is built or rebuilt |
+//! | 101 `wind_params` | the field's parameters: clock, log-law constants, σ's, travel, pulse, ≤ 64 shelters and sources | every frame (7 280 B) |
 //!
-//! Both live in [`WindGpuBuffers`] as [`ShaderBuffer`] assets: bind them in a material
-//! (`#[storage(100, read_only)]`, `#[storage(101, read_only)]`) or in a compute pass (set the
-//! shader def `WIND_BIND_GROUP` to the group's index). In WGSL:
+//! Both live in [`WindGpuBuffers`]. Where the device has storage buffers ([`GpuLayout::Storage`]:
+//! WebGPU, Vulkan, Metal, DX12) they are two read-only storage [`ShaderBuffer`]s: bind them in a
+//! material (`#[storage(100, read_only)]`, `#[storage(101, read_only)]`) or in a compute pass
+//! (set the shader def `WIND_BIND_GROUP` to the group's index). On WebGL2
+//! ([`GpuLayout::Texture`]) the nodes are an RGBA32F texture ([`WindGpuBuffers::node_texture`],
+//! one node a texel, rows of up to 2 048) and the parameters a uniform buffer of the same bytes;
+//! [`WindGpuBuffers::layout_entries`] and [`WindGpuBuffers::bindings`] bind whichever the device
+//! has, as [`WindSway`] does. In WGSL the module reads either the same way:
 //!
 //! ```wgsl
 //! #import bevy_windfall::wind::{wind_velocity, wind_velocity_at}
@@ -23,8 +28,8 @@
 //!
 //! [`LeafCloudRenderPlugin`] draws every [`LeafCloud`](crate::freefall::LeafCloud) in one draw
 //! call: a mesh of all its leaves whose vertex shader reads each leaf's pose from a storage
-//! buffer (`cloud.wgsl`, binding 103, so a cloud's material may also bind the wind at 100 and
-//! 101; the sway material's settings are at 102). Helpers the shaders share (a rotation by a
+//! buffer, or on WebGL2 a texture (`cloud.wgsl`, binding 103, so a cloud's material may also bind
+//! the wind at 100 and 101; the sway material's settings are at 102). Helpers the shaders share (a rotation by a
 //! quaternion) are in the module `bevy_windfall::math`.
 //!
 //! Time in the shader is relative to the uploaded clock (`dt`, seconds): everything that grows
@@ -32,11 +37,13 @@
 //! after hours of play. `tests/gpu_wind.rs` checks the GPU against the CPU at thousands of points.
 
 mod cloud;
+mod layout;
 mod look;
 mod params;
 mod sway;
 
 pub use cloud::{CloudPoses, LeafCloudLook, LeafCloudMaterial, LeafCloudRenderPlugin};
+pub use layout::GpuLayout;
 pub use look::WindfallRenderPlugin;
 
 use params::{GpuWindParams, node_bytes};
@@ -45,8 +52,17 @@ pub use sway::{SwaySettings, WindSway, WindSwayMaterial};
 use bevy::app::{App, Plugin, PostUpdate};
 use bevy::asset::{Assets, Handle, RenderAssetUsages};
 use bevy::ecs::prelude::*;
+use bevy::image::Image;
 use bevy::log::warn;
-use bevy::render::storage::ShaderBuffer;
+use bevy::render::render_asset::RenderAssets;
+use bevy::render::render_resource::{
+    AsBindGroupError, BindGroupLayoutEntry, BufferUsages, OwnedBindingResource, ShaderStages,
+};
+use bevy::render::renderer::RenderDevice;
+use bevy::render::storage::{GpuShaderBuffer, ShaderBuffer};
+use bevy::render::texture::GpuImage;
+
+use layout::{bound_buffer, bound_texture, record_texture, texture_width};
 
 use crate::wind::WindField;
 
@@ -69,14 +85,50 @@ use crate::wind::WindField;
 #[derive(Default)]
 pub struct WindGpuPlugin;
 
-/// The wind's GPU buffers (see the [module](self)): bind these handles.
-#[derive(Resource, Clone, Debug)]
+/// The wind's GPU data (see the [module](self)): bind these handles, or let
+/// [`Self::layout_entries`] and [`Self::bindings`] bind them.
+#[derive(Resource, Clone, Debug, Default)]
 pub struct WindGpuBuffers {
-    /// The turbulence nodes (`wind_nodes`, binding 100).
+    /// The turbulence nodes (`wind_nodes`, binding 100) as a storage buffer
+    /// ([`GpuLayout::Storage`]; a placeholder otherwise).
     pub nodes: Handle<ShaderBuffer>,
+    /// The turbulence nodes as an RGBA32F texture, node `i` at texel (i mod width, i / width)
+    /// ([`GpuLayout::Texture`]; a placeholder otherwise).
+    pub node_texture: Handle<Image>,
     /// The field's per-frame parameters (`wind_params`, binding 101): the struct
-    /// `WindParams` of the WGSL module.
+    /// `WindParams` of the WGSL module, as a storage or (textures layout) a uniform buffer.
     pub params: Handle<ShaderBuffer>,
+    /// Which of the above the shaders read on this device.
+    pub layout: GpuLayout,
+}
+
+impl WindGpuBuffers {
+    /// The bind group layout entries of the wind (bindings 100 and 101) on `device`, seen by
+    /// `visibility`.
+    pub fn layout_entries(
+        device: &RenderDevice,
+        visibility: ShaderStages,
+    ) -> [BindGroupLayoutEntry; 2] {
+        let layout = GpuLayout::of(device);
+        [
+            layout.array_entry(100, visibility),
+            layout.buffer_entry(101, visibility),
+        ]
+    }
+
+    /// The resources to bind at 100 and 101 (render world), or
+    /// [`AsBindGroupError::RetryNextUpdate`] while they are not on the GPU yet.
+    pub fn bindings(
+        &self,
+        images: &RenderAssets<GpuImage>,
+        buffers: &RenderAssets<GpuShaderBuffer>,
+    ) -> Result<[(u32, OwnedBindingResource); 2], AsBindGroupError> {
+        let nodes = match self.layout {
+            GpuLayout::Storage => bound_buffer(buffers, &self.nodes)?,
+            GpuLayout::Texture => bound_texture(images, &self.node_texture)?,
+        };
+        Ok([(100, nodes), (101, bound_buffer(buffers, &self.params)?)])
+    }
 }
 
 /// What the last uploads cost: bytes of nodes per field and of parameters per frame.
@@ -115,14 +167,24 @@ impl Plugin for WindGpuPlugin {
         if app.world().contains_resource::<WindGpuBuffers>() {
             return;
         }
-        let Some(mut buffers) = app.world_mut().get_resource_mut::<Assets<ShaderBuffer>>() else {
+        let world = app.world_mut();
+        let Some(layout) = world.get_resource::<RenderDevice>().map(GpuLayout::of) else {
             warn!("WindGpuPlugin needs the renderer (add it after DefaultPlugins)");
             return;
         };
         // Placeholders of the right kind until the first upload: one node, empty parameters.
+        let mut buffers = world.resource_mut::<Assets<ShaderBuffer>>();
         let nodes = buffers.add(ShaderBuffer::new(&[0; 12], RenderAssetUsages::RENDER_WORLD));
-        let params = buffers.add(params_buffer(&empty_params()));
-        app.insert_resource(WindGpuBuffers { nodes, params });
+        let params = buffers.add(params_buffer(&empty_params(), layout));
+        let node_texture = world
+            .resource_mut::<Assets<Image>>()
+            .add(record_texture(vec![0; 16], 2));
+        world.insert_resource(WindGpuBuffers {
+            nodes,
+            node_texture,
+            params,
+            layout,
+        });
     }
 }
 
@@ -136,8 +198,11 @@ fn empty_params() -> GpuWindParams {
     )
 }
 
-fn params_buffer(params: &GpuWindParams) -> ShaderBuffer {
+fn params_buffer(params: &GpuWindParams, layout: GpuLayout) -> ShaderBuffer {
     let mut buffer = ShaderBuffer::default();
+    if layout == GpuLayout::Texture {
+        buffer.buffer_description.usage = BufferUsages::UNIFORM | BufferUsages::COPY_DST;
+    }
     buffer.set_data(params.clone());
     buffer
 }
@@ -162,20 +227,43 @@ fn refresh_sway_materials(
 fn upload_wind(
     field: Option<Res<WindField>>,
     gpu: Option<Res<WindGpuBuffers>>,
+    device: Option<Res<RenderDevice>>,
     mut buffers: ResMut<Assets<ShaderBuffer>>,
+    mut images: ResMut<Assets<Image>>,
     mut uploads: ResMut<WindGpuUploads>,
 ) {
     let (Some(field), Some(gpu)) = (field, gpu) else {
         return;
     };
     if uploads.generation != field.generation() {
-        let bytes = node_bytes(&field);
         uploads.generation = field.generation();
-        uploads.node_bytes = bytes.len();
         uploads.node_uploads += 1;
         // Kept on the render side only: no CPU copy of the nodes stays behind.
-        let buffer = ShaderBuffer::new(&bytes, RenderAssetUsages::RENDER_WORLD);
-        if buffers.insert(&gpu.nodes, buffer).is_err() {
+        let removed = match gpu.layout {
+            GpuLayout::Storage => {
+                let bytes = node_bytes(&field, 3);
+                uploads.node_bytes = bytes.len();
+                let buffer = ShaderBuffer::new(&bytes, RenderAssetUsages::RENDER_WORLD);
+                buffers.insert(&gpu.nodes, buffer).is_err()
+            }
+            GpuLayout::Texture => {
+                let max = device.map_or(2048, |d| d.limits().max_texture_dimension_2d);
+                let nodes = field.nodes().len();
+                if nodes > (max as usize).pow(2) {
+                    warn!(
+                        "WindGpuPlugin: {nodes} nodes do not fit a {max}² texture; the GPU \
+                         reads the first {}",
+                        (max as usize).pow(2)
+                    );
+                }
+                let mut bytes = node_bytes(&field, 4);
+                bytes.truncate((max as usize).pow(2) * 16);
+                uploads.node_bytes = bytes.len();
+                let image = record_texture(bytes, texture_width(nodes, max));
+                images.insert(&gpu.node_texture, image).is_err()
+            }
+        };
+        if removed {
             warn!("WindGpuPlugin: the node buffer was removed");
         }
     }

@@ -255,13 +255,14 @@ impl GpuWindParams {
     }
 }
 
-/// The turbulence nodes as the shader reads them: three f32 (u, v, w) per node, row-major over
-/// (time, x, y, z), little-endian bytes.
-pub(crate) fn node_bytes(field: &WindField) -> Vec<u8> {
+/// The turbulence nodes as the shader reads them: (u, v, w) per node, row-major over
+/// (time, x, y, z), little-endian f32, `stride` floats a node (3 in a storage buffer, 4 in an
+/// RGBA32F texel, the fourth 0).
+pub(crate) fn node_bytes(field: &WindField, stride: usize) -> Vec<u8> {
     let nodes = field.nodes();
-    let mut bytes = Vec::with_capacity(nodes.len() * 12);
+    let mut bytes = Vec::with_capacity(nodes.len() * 4 * stride);
     for n in nodes {
-        for v in n.to_array() {
+        for v in n.extend(0.0).to_array().into_iter().take(stride) {
             bytes.extend_from_slice(&v.to_le_bytes());
         }
     }
@@ -278,7 +279,7 @@ mod tests {
     fn packing_the_default_plane() {
         let field = WindField::new(crate::wind::WindConfig::default()).unwrap();
         let start = std::time::Instant::now();
-        let bytes = node_bytes(&field);
+        let bytes = node_bytes(&field, 3);
         let packing = start.elapsed();
         let start = std::time::Instant::now();
         for _ in 0..100 {
@@ -290,5 +291,14 @@ mod tests {
             start.elapsed() / 100
         );
         assert_eq!(bytes.len(), 128 * 128 * 12);
+    }
+
+    /// WebGL2 reads the parameters as a uniform buffer: the same bytes must satisfy the uniform
+    /// address space's rules (16-byte array strides and struct alignment), and fit its 16 KiB.
+    #[test]
+    fn the_parameters_are_a_valid_uniform_block() {
+        GpuWindParams::assert_uniform_compat();
+        let size = GpuWindParams::min_size().get();
+        assert!(size <= 16 * 1024 && size % 16 == 0, "{size} B");
     }
 }

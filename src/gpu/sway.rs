@@ -3,12 +3,23 @@
 //!
 //! The model is described on [`WindSway`].
 
-use bevy::asset::{Asset, Handle};
+use bevy::asset::Asset;
+use bevy::ecs::system::SystemParamItem;
+use bevy::ecs::system::lifetimeless::SRes;
 use bevy::math::Vec4;
 use bevy::pbr::{ExtendedMaterial, MaterialExtension, StandardMaterial};
 use bevy::reflect::Reflect;
-use bevy::render::render_resource::{AsBindGroup, ShaderType};
-use bevy::render::storage::ShaderBuffer;
+use bevy::render::render_asset::RenderAssets;
+use bevy::render::render_resource::binding_types::uniform_buffer;
+use bevy::render::render_resource::encase::UniformBuffer;
+use bevy::render::render_resource::{
+    AsBindGroup, AsBindGroupError, BindGroupLayout, BindGroupLayoutEntry, BindingResources,
+    BufferInitDescriptor, BufferUsages, OwnedBindingResource, ShaderStages, ShaderType,
+    UnpreparedBindGroup,
+};
+use bevy::render::renderer::RenderDevice;
+use bevy::render::storage::GpuShaderBuffer;
+use bevy::render::texture::GpuImage;
 use bevy::shader::ShaderRef;
 
 use super::WindGpuBuffers;
@@ -98,18 +109,15 @@ impl SwaySettings {
 ///     ));
 /// }
 /// ```
-#[derive(Asset, AsBindGroup, Clone, Debug, Reflect)]
+///
+/// The wind is bound at 100 and 101 as [`WindGpuBuffers::bindings`] says (storage buffers, or a
+/// texture and a uniform buffer on WebGL2), the settings at 102.
+#[derive(Asset, Clone, Debug, Reflect)]
 pub struct WindSway {
-    /// The turbulence nodes ([`WindGpuBuffers::nodes`]).
-    #[storage(100, read_only, visibility(vertex))]
+    /// The wind's data ([`WindGpuBuffers`]).
     #[reflect(ignore)]
-    pub nodes: Handle<ShaderBuffer>,
-    /// The wind's parameters ([`WindGpuBuffers::params`]).
-    #[storage(101, read_only, visibility(vertex))]
-    #[reflect(ignore)]
-    pub params: Handle<ShaderBuffer>,
-    /// How the mesh bends.
-    #[uniform(102)]
+    pub wind: WindGpuBuffers,
+    /// How the mesh bends: [`SwaySettings::to_vec4`].
     pub sway: Vec4,
 }
 
@@ -117,10 +125,54 @@ impl WindSway {
     /// Bending as `settings` says, in the wind of `buffers`.
     pub fn new(buffers: &WindGpuBuffers, settings: SwaySettings) -> Self {
         Self {
-            nodes: buffers.nodes.clone(),
-            params: buffers.params.clone(),
+            wind: buffers.clone(),
             sway: settings.to_vec4(),
         }
+    }
+}
+
+impl AsBindGroup for WindSway {
+    type Data = ();
+    type Param = (
+        SRes<RenderAssets<GpuImage>>,
+        SRes<RenderAssets<GpuShaderBuffer>>,
+    );
+
+    fn label() -> &'static str {
+        "WindSway"
+    }
+
+    fn bind_group_data(&self) -> Self::Data {}
+
+    fn unprepared_bind_group(
+        &self,
+        _layout: &BindGroupLayout,
+        device: &RenderDevice,
+        (images, buffers): &mut SystemParamItem<'_, '_, Self::Param>,
+        _force_no_bindless: bool,
+    ) -> Result<UnpreparedBindGroup, AsBindGroupError> {
+        let mut sway = UniformBuffer::new(Vec::new());
+        sway.write(&self.sway)
+            .map_err(|_| AsBindGroupError::RetryNextUpdate)?;
+        let sway = device.create_buffer_with_data(&BufferInitDescriptor {
+            label: Some("WindSway settings"),
+            contents: sway.as_ref(),
+            usage: BufferUsages::UNIFORM | BufferUsages::COPY_DST,
+        });
+        let mut bindings = Vec::from(self.wind.bindings(images, buffers)?);
+        bindings.push((102, OwnedBindingResource::Buffer(sway)));
+        Ok(UnpreparedBindGroup {
+            bindings: BindingResources(bindings),
+        })
+    }
+
+    fn bind_group_layout_entries(
+        device: &RenderDevice,
+        _force_no_bindless: bool,
+    ) -> Vec<BindGroupLayoutEntry> {
+        let mut entries = WindGpuBuffers::layout_entries(device, ShaderStages::VERTEX).to_vec();
+        entries.push(uniform_buffer::<Vec4>(false).build(102, ShaderStages::VERTEX));
+        entries
     }
 }
 

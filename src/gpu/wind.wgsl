@@ -48,12 +48,25 @@ struct WindParams {
     locals: array<WindLocal, 64>,
 }
 
+// Where the device has storage buffers (Bevy's `AVAILABLE_STORAGE_BUFFER_BINDINGS`, the rule of
+// `GpuLayout::of` in src/gpu/layout.rs) the nodes and parameters are read-only storage; on
+// WebGL2 the nodes are an RGBA32F texture and the parameters a uniform buffer of the same bytes.
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 4
 #ifdef WIND_BIND_GROUP
 @group(#{WIND_BIND_GROUP}) @binding(100) var<storage, read> wind_nodes: array<f32>;
 @group(#{WIND_BIND_GROUP}) @binding(101) var<storage, read> wind_params: WindParams;
 #else
 @group(#{MATERIAL_BIND_GROUP}) @binding(100) var<storage, read> wind_nodes: array<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(101) var<storage, read> wind_params: WindParams;
+#endif
+#else
+#ifdef WIND_BIND_GROUP
+@group(#{WIND_BIND_GROUP}) @binding(100) var wind_node_texture: texture_2d<f32>;
+@group(#{WIND_BIND_GROUP}) @binding(101) var<uniform> wind_params: WindParams;
+#else
+@group(#{MATERIAL_BIND_GROUP}) @binding(100) var wind_node_texture: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(101) var<uniform> wind_params: WindParams;
+#endif
 #endif
 
 const WIND_TAU: f32 = 6.283185307179586;
@@ -62,7 +75,15 @@ const WIND_TINY: f32 = 1.1754944e-38;
 
 // (u, v, w) of node `i`.
 fn wind_node(i: u32) -> vec3<f32> {
+#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 4
     return vec3<f32>(wind_nodes[3u * i], wind_nodes[3u * i + 1u], wind_nodes[3u * i + 2u]);
+#else
+    // Node i at texel (i mod width, i / width); a field larger than the texture (warned about
+    // on the CPU) reads its last texel.
+    let size = textureDimensions(wind_node_texture);
+    let j = min(i, size.x * size.y - 1u);
+    return textureLoad(wind_node_texture, vec2<u32>(j % size.x, j / size.x), 0).xyz;
+#endif
 }
 
 // Multilinear interpolation on the periodic grid at node coordinates `c` = (time, x, y, z);
