@@ -9,6 +9,7 @@ use std::time::Duration;
 
 use bevy::prelude::*;
 use bevy::render::render_resource::{PipelineCache, PipelineDescriptor};
+use bevy::render::renderer::RenderDevice;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured, save_to_disk};
 use bevy::render::{Render, RenderApp, RenderSystems};
 use bevy::time::TimeUpdateStrategy;
@@ -102,20 +103,26 @@ pub const DEFAULT_SCREENSHOT_FRAME: u32 = 64;
 #[derive(Resource, Clone, Default)]
 struct PendingPipelines(Arc<AtomicUsize>);
 
-/// Counts only render pipelines: a compute pipeline the device cannot run (Bevy's sparse buffer
-/// update under WebGL2's limits) is queued again every frame and would never let a scene count
-/// as rendered.
-fn count_pending_pipelines(cache: Res<PipelineCache>, pending: Res<PendingPipelines>) {
+/// On a device without compute shaders (WebGL2, or WebGL2's limits natively) compute pipelines
+/// are not counted: Bevy queues one it cannot build (the sparse buffer update) again every frame,
+/// and the scene would never count as rendered.
+fn count_pending_pipelines(
+    cache: Res<PipelineCache>,
+    device: Res<RenderDevice>,
+    pending: Res<PendingPipelines>,
+) {
+    let compute = device.limits().max_compute_workgroups_per_dimension > 0;
     let pipelines: Vec<_> = cache.pipelines().collect();
     let waiting = cache
         .waiting_pipelines()
         .filter(|&id| {
-            pipelines.get(id).is_some_and(|p| {
-                matches!(
-                    p.descriptor,
-                    PipelineDescriptor::RenderPipelineDescriptor(_)
-                )
-            })
+            compute
+                || pipelines.get(id).is_some_and(|p| {
+                    matches!(
+                        p.descriptor,
+                        PipelineDescriptor::RenderPipelineDescriptor(_)
+                    )
+                })
         })
         .count();
     pending.0.store(waiting, Ordering::Relaxed);

@@ -1,9 +1,11 @@
-//! Drawing a [`LeafCloud`]: one mesh, one draw call, the leaves' poses in a storage buffer.
+//! Drawing a [`LeafCloud`]: one mesh, one draw call, the leaves' poses in a storage buffer (on
+//! WebGL2 a texture).
 //!
 //! The mesh holds `count` copies of the leaf's outline at the origin, each vertex tagged with
 //! its leaf's index (the second UV set) and coloured from the cloud's [`LeafCloudLook`]; the
 //! vertex shader (`cloud.wgsl`) moves each copy to its leaf's pose, which the plugin writes into
-//! a [`ShaderBuffer`] once per frame (32 bytes a leaf, in place). There is one entity, one mesh
+//! a [`ShaderBuffer`] once per frame (32 bytes a leaf, in place), or where the device has no
+//! storage buffers ([`GpuLayout::Texture`]) into an RGBA32F [`Image`], two texels a leaf. There is one entity, one mesh
 //! and one material per cloud, and nothing per leaf on the CPU but the pose.
 //!
 //! The mesh is built once (again when the count, the shape or the look changes). Leaves cast no
@@ -142,7 +144,7 @@ impl Default for LeafCloudLook {
     }
 }
 
-/// What the plugin made for a cloud: its pose buffer and what its mesh was built for.
+/// What the plugin made for a cloud: its pose buffer or texture and what its mesh was built for.
 #[derive(Component, Clone, Debug)]
 pub(crate) struct LeafCloudVisual {
     /// The poses ([`CloudPoses::poses`], [`CloudPoses::pose_texture`]).
@@ -161,8 +163,8 @@ pub(crate) struct LeafCloudVisual {
 ///
 /// The mesh holds `count` copies of the leaf's outline at the origin, each vertex tagged with its
 /// leaf's index (the second UV set) and coloured from the cloud's [`LeafCloudLook`]; the vertex
-/// shader moves each copy to its leaf's pose, read from a [`ShaderBuffer`] of
-/// 32 bytes a leaf (position and rotation) written in place. One entity, one mesh, one material and one draw call
+/// shader moves each copy to its leaf's pose, read from a [`ShaderBuffer`] of 32 bytes a leaf
+/// (position and rotation; on WebGL2 a texture of two texels a leaf) written in place. One entity, one mesh, one material and one draw call
 /// per cloud. The mesh is rebuilt when the count, the shape or the look changes. Leaves cast no
 /// shadows, and the cloud is never frustum-culled as a whole.
 ///

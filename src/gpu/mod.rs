@@ -15,7 +15,8 @@
 //! material (`#[storage(100, read_only)]`, `#[storage(101, read_only)]`) or in a compute pass
 //! (set the shader def `WIND_BIND_GROUP` to the group's index). On WebGL2
 //! ([`GpuLayout::Texture`]) the nodes are an RGBA32F texture ([`WindGpuBuffers::node_texture`],
-//! one node a texel, rows of up to 2 048) and the parameters a uniform buffer of the same bytes;
+//! one node a texel, rows as wide as the device allows: 2 048 on WebGL2) and the parameters a
+//! uniform buffer of the same bytes;
 //! [`WindGpuBuffers::layout_entries`] and [`WindGpuBuffers::bindings`] bind whichever the device
 //! has, as [`WindSway`] does. In WGSL the module reads either the same way:
 //!
@@ -207,15 +208,21 @@ fn params_buffer(params: &GpuWindParams, layout: GpuLayout) -> ShaderBuffer {
     buffer
 }
 
-/// When the node buffer changes size (a new grid), the GPU buffer is a new one: the sway
-/// materials' bind groups are rebuilt by marking the materials changed.
+/// When the node buffer or texture changes size (a new grid), the GPU resource is a new one: the
+/// sway materials' bind groups are rebuilt by marking the materials changed, in that frame and
+/// the next (the render world may prepare the materials before the new nodes in the first).
 fn refresh_sway_materials(
     uploads: Res<WindGpuUploads>,
     mut materials: ResMut<Assets<WindSwayMaterial>>,
-    mut bound: Local<usize>,
+    mut bound: Local<(usize, u8)>,
 ) {
-    if uploads.node_bytes != *bound {
-        *bound = uploads.node_bytes;
+    let (bytes, frames) = &mut *bound;
+    if uploads.node_bytes != *bytes {
+        *bytes = uploads.node_bytes;
+        *frames = 2;
+    }
+    if *frames > 0 {
+        *frames -= 1;
         let ids: Vec<_> = materials.ids().collect();
         for id in ids {
             materials.get_mut(id);
@@ -249,17 +256,18 @@ fn upload_wind(
             GpuLayout::Texture => {
                 let max = device.map_or(2048, |d| d.limits().max_texture_dimension_2d);
                 let nodes = field.nodes().len();
-                if nodes > (max as usize).pow(2) {
+                let room = texture_width(nodes, max) as usize * max as usize;
+                if nodes > room {
                     warn!(
-                        "WindGpuPlugin: {nodes} nodes do not fit a {max}² texture; the GPU \
-                         reads the first {}",
-                        (max as usize).pow(2)
+                        "WindGpuPlugin: {nodes} nodes do not fit a {max}-texel texture; the \
+                         GPU reads the first {room}"
                     );
                 }
+                let width = texture_width(nodes, max);
                 let mut bytes = node_bytes(&field, 4);
-                bytes.truncate((max as usize).pow(2) * 16);
+                bytes.truncate(width as usize * max as usize * 16);
                 uploads.node_bytes = bytes.len();
-                let image = record_texture(bytes, texture_width(nodes, max));
+                let image = record_texture(bytes, width);
                 images.insert(&gpu.node_texture, image).is_err()
             }
         };
