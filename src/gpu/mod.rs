@@ -256,16 +256,16 @@ fn upload_wind(
             GpuLayout::Texture => {
                 let max = device.map_or(2048, |d| d.limits().max_texture_dimension_2d);
                 let nodes = field.nodes().len();
-                let room = texture_width(nodes, max) as usize * max as usize;
+                let width = texture_width(nodes, max);
+                let room = width as usize * max as usize;
                 if nodes > room {
                     warn!(
                         "WindGpuPlugin: {nodes} nodes do not fit a {max}-texel texture; the \
                          GPU reads the first {room}"
                     );
                 }
-                let width = texture_width(nodes, max);
                 let mut bytes = node_bytes(&field, 4);
-                bytes.truncate(width as usize * max as usize * 16);
+                bytes.truncate(room * 16);
                 uploads.node_bytes = bytes.len();
                 let image = record_texture(bytes, width);
                 images.insert(&gpu.node_texture, image).is_err()
