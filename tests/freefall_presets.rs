@@ -299,7 +299,7 @@ fn the_showcase_leaves_show_four_motions_at_once() {
         }),
         FallPlugin::default(),
     ));
-    let mut canopy = population::Canopy(FallRng::new(99));
+    let mut canopy = population::Canopy(population::Stream::new(99));
     for i in 0..population::LEAVES {
         let transform = Transform::from_translation(canopy.midair()).with_rotation(canopy.turn());
         app.world_mut().spawn((population::leaf(i), transform));

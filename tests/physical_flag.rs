@@ -1,7 +1,8 @@
 //! The physical flag flaps as flags do: a 1.5 m × 1 m particle flag of 0.15 kg/m² on a pole in
 //! a uniform wind of 4, 8 and 12 m/s, at 16 × 24 and 32 × 48 nodes, 50 steps a second, measured
 //! over 20 s after 2 s of settling, against the flapping-flag literature (Shelley & Zhang 2011;
-//! Taneda 1968; Eloy et al. 2008) and the free-flag drag of AS/NZS 1170.2 Appendix F.
+//! Taneda 1968; Eloy et al. 2008; Raynaud & Mulleners 2026) and the free-flag drag of AS/NZS
+//! 1170.2 Appendix F.
 
 use std::sync::LazyLock;
 
@@ -76,7 +77,7 @@ static RUNS: LazyLock<Vec<Run>> = LazyLock::new(|| {
 fn describe(r: &Run) -> String {
     let s = &r.stats;
     format!(
-        "{} rows at {} m/s: bend {:.3} L, f {:.2} Hz, A {:.3} L, f A / U {:.3}, waves {:.2} U, drag {:.2} N",
+        "{} rows at {} m/s: bend {:.3} L, f {:.2} Hz, A {:.3} L, f A / U {:.3}, waves {:.2} U, λ {:.2} L, drag {:.2} N",
         r.rows,
         r.speed,
         s.bend,
@@ -84,6 +85,7 @@ fn describe(r: &Run) -> String {
         s.amplitude,
         s.strouhal(WIDTH, r.speed),
         s.wave_speed / r.speed,
+        s.wave_speed / s.frequency / WIDTH,
         r.drag
     )
 }
@@ -125,9 +127,10 @@ fn it_flaps_faster_in_stronger_wind_and_as_wide_once_gravity_is_small() {
                 describe(fast)
             );
         }
-        // From 8 to 12 m/s gravity is small beside the wind (g L / U² ≤ 0.23) and the face
-        // law scales with U²: the swing keeps its width (within a quarter). At 4 m/s the flag
-        // droops and its tip wanders wider.
+        // From 8 to 12 m/s gravity is small beside the wind (g L / U² ≤ 0.23) and every force
+        // of the face law, the added mass's included, scales with U²: the swing keeps its
+        // width (within a quarter; it does not grow). At 4 m/s the flag droops and its tip's
+        // swing depends on the grid: not asserted.
         let (eight, twelve) = (runs[1], runs[2]);
         let ratio = twelve.stats.amplitude / eight.stats.amplitude;
         assert!(
@@ -140,6 +143,20 @@ fn it_flaps_faster_in_stronger_wind_and_as_wide_once_gravity_is_small() {
 }
 
 #[test]
+fn its_waves_are_about_twice_its_length() {
+    // Raynaud & Mulleners (2026), 48 paper flags of several aspect and mass ratios: the waves'
+    // length λ = c / f is 1.87 L, nearly whatever the flag.
+    for r in RUNS.iter() {
+        let wavelength = r.stats.wave_speed / r.stats.frequency / WIDTH;
+        assert!(
+            (1.4..=2.4).contains(&wavelength),
+            "{}: λ = {wavelength:.2} L",
+            describe(r)
+        );
+    }
+}
+
+#[test]
 fn its_drag_is_the_free_flag_drag_of_the_wind_code() {
     // AS/NZS 1170.2 Appendix F: C = 0.05 + 0.7 (m / (ρ c)) (A / c²)^−1.25 on ½ ρ U² A, with m
     // the mass per area, c the flag's height and A its area: about 0.10 here.
@@ -147,13 +164,12 @@ fn its_drag_is_the_free_flag_drag_of_the_wind_code() {
     let area = WIDTH * HEIGHT;
     let c = 0.05 + 0.7 * (AREAL_DENSITY / (rho * HEIGHT)) * (area / (HEIGHT * HEIGHT)).powf(-1.25);
     assert!((c - 0.103).abs() < 0.005, "{c}");
-    // Within a factor 2.5 either way (measured: 0.46–0.72 of it, the face law's pressure drag
-    // and skin friction alone; the code's figure is for real flags, hems and all).
+    // Within ±50 % (measured: 0.86–1.05 of it).
     for r in RUNS.iter() {
         let expected = c * 0.5 * rho * r.speed * r.speed * area;
         let ratio = r.drag / expected;
         assert!(
-            (0.4..=1.5).contains(&ratio),
+            (0.5..=1.5).contains(&ratio),
             "{}: {ratio:.2} of the code's {expected:.2} N",
             describe(r)
         );

@@ -4,7 +4,6 @@
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
-use bevy_windfall::freefall::FallRng;
 use bevy_windfall::gpu::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 
 /// Blades in the meadow.
@@ -17,7 +16,7 @@ const TALLEST: f32 = 0.42;
 /// darker at the root and yellower at the tip. The mesh's y is the height above the ground, as
 /// [`SwaySettings::grass`] expects.
 pub fn blades(count: usize, min: Vec2, max: Vec2, seed: u64) -> Mesh {
-    let mut rng = FallRng::new(seed);
+    let mut rng = super::population::Stream::new(seed);
     let mut positions = Vec::with_capacity(count * 5);
     let mut normals = Vec::with_capacity(count * 5);
     let mut colors = Vec::with_capacity(count * 5);

@@ -8,14 +8,14 @@
 use bevy::prelude::*;
 use bevy_windfall::aero::{AeroState, PlateState};
 use bevy_windfall::freefall::{
-    CloudRegion, FallLod, FallPreset, FallRng, LeafCloud, LeafCloudState, PrimitiveMotion,
+    CloudRegion, FallLod, FallPreset, LeafCloud, LeafCloudState, PrimitiveMotion,
 };
 use bevy_windfall::gpu::{LeafCloudLook, SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 use bevy_windfall::lod::LodTiers;
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::WindSource;
 
-use super::population::{CANOPY, Canopy, LEAVES, leaf};
+use super::population::{CANOPY, Canopy, LEAVES, Stream, leaf};
 use super::{Featured, Scene, SceneInfo, common, place_camera};
 
 const PHYSICAL_LEAVES: usize = 30;
@@ -26,7 +26,7 @@ pub const STORM: u32 = 24_000;
 const REST: f32 = 2.0;
 
 pub fn plugin(app: &mut App) {
-    app.insert_resource(Spawner(Canopy(FallRng::new(99))))
+    app.insert_resource(Spawner(Canopy(Stream::new(99))))
         .init_resource::<View>()
         .add_systems(OnEnter(Scene::Leaves), setup)
         .add_systems(

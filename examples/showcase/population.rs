@@ -5,7 +5,9 @@
 use std::f32::consts::TAU;
 
 use bevy::math::{Quat, Vec3};
-use bevy_windfall::freefall::{FallPreset, FallRng, FallingObject};
+use bevy_windfall::freefall::{FallPreset, FallingObject};
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg32;
 
 /// Leaves on the tree.
 pub const LEAVES: usize = 600;
@@ -29,8 +31,23 @@ pub fn leaf(i: usize) -> FallingObject {
     }
 }
 
+/// A seeded stream for laying a scene out: PCG32, the same numbers on every platform.
+pub struct Stream(Pcg32);
+
+impl Stream {
+    /// A stream from a seed.
+    pub fn new(seed: u64) -> Self {
+        Self(Pcg32::seed_from_u64(seed))
+    }
+
+    /// Uniform in [0, 1), from the top 24 bits of a draw.
+    pub fn uniform(&mut self) -> f32 {
+        (self.0.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
+    }
+}
+
 /// Where leaves are let go, drawn from a seeded stream.
-pub struct Canopy(pub FallRng);
+pub struct Canopy(pub Stream);
 
 impl Canopy {
     /// A point in the lower half of the canopy.

@@ -65,7 +65,6 @@ pub use path::{FallPath, StepOutcome, WindTilt};
 pub use object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
 pub use plugin::FallPlugin;
 pub use presets::FallPreset;
-pub use random::FallRng;
 pub use regime::{FallError, Fluid, PrimitiveMotion, Regime, Shape};
 pub use release::FallRelease;
 

@@ -6,7 +6,7 @@ use rand_pcg::Pcg32;
 /// PCG32 with uniform and normal draws made from integer bits and `libm`, so a seed gives the
 /// same numbers on every platform.
 #[derive(Clone, Debug, PartialEq)]
-pub struct FallRng(Pcg32);
+pub(crate) struct FallRng(Pcg32);
 
 impl FallRng {
     /// A stream from a seed.

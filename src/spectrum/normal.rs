@@ -86,7 +86,7 @@ impl NormalPairs {
 
 /// One standard normal: a first attempt from the 32 bits `bits`, drawing more from `rng` only
 /// on the slow path. The crate's one normal sampler: the spectra's pairs (from PCG64) and the
-/// falls' Gaussian spreads (from [`FallRng`](crate::freefall::FallRng), PCG32) both use it.
+/// falls' Gaussian spreads (from `FallRng`, PCG32) both use it.
 pub(crate) fn standard_normal<R: Rng>(bits: u32, rng: &mut R) -> f32 {
     from_tables(&TABLES, bits, rng)
 }

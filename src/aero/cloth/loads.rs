@@ -11,8 +11,10 @@ use super::screen::screen_grid;
 /// 0.074 Re^−1/5, at the Re ≈ 10⁶ of a flag a metre or two long in a breeze.
 const SKIN_FRICTION: f32 = 0.005;
 /// The face law's lift is smoothed over this fraction of the cloth's smaller side (see
-/// [`screen_grid`]).
-const LIFT_SMOOTHING: f32 = 0.1;
+/// [`screen_grid`]): waves shorter than about the span are driven less, as the air flows round
+/// a finite sheet's edges. Half the span puts a flag's waves at 1.6–2.1 of its length, where
+/// flags flap (1.87: Raynaud & Mulleners 2026, 48 paper flags of several aspect ratios).
+const LIFT_SMOOTHING: f32 = 0.5;
 
 impl ParticleCloth {
     /// Lift per node (smoothed), pressure-drag rate and normal per node from every triangle, and
