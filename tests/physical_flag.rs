@@ -115,7 +115,7 @@ fn waves_run_from_the_pole_to_the_free_edge_at_about_the_wind_speed() {
 }
 
 #[test]
-fn it_flaps_faster_in_stronger_wind_and_as_wide_once_gravity_is_small() {
+fn it_flaps_faster_and_wider_in_stronger_wind_once_gravity_is_small() {
     for &(rows, _) in &GRIDS {
         let runs: Vec<&Run> = RUNS.iter().filter(|r| r.rows == rows).collect();
         for pair in runs.windows(2) {
@@ -127,14 +127,12 @@ fn it_flaps_faster_in_stronger_wind_and_as_wide_once_gravity_is_small() {
                 describe(fast)
             );
         }
-        // From 8 to 12 m/s gravity is small beside the wind (g L / U² ≤ 0.23) and every force
-        // of the face law, the added mass's included, scales with U²: the swing keeps its
-        // width (within a quarter; it does not grow). At 4 m/s the flag droops and its tip's
-        // swing depends on the grid: not asserted.
+        // From 8 to 12 m/s gravity's share falls (g L / U² from 0.23 to 0.10) and the swing
+        // widens. At 4 m/s the flag droops and its tip's swing depends on the grid (wider than at
+        // 8 m/s at 16 rows, as wide at 32): not asserted.
         let (eight, twelve) = (runs[1], runs[2]);
-        let ratio = twelve.stats.amplitude / eight.stats.amplitude;
         assert!(
-            (0.75..=1.33).contains(&ratio),
+            twelve.stats.amplitude > eight.stats.amplitude,
             "{}\n{}",
             describe(eight),
             describe(twelve)
@@ -145,8 +143,9 @@ fn it_flaps_faster_in_stronger_wind_and_as_wide_once_gravity_is_small() {
 #[test]
 fn its_waves_are_about_twice_its_length() {
     // Raynaud & Mulleners (2026), 48 paper flags of several aspect and mass ratios: the waves'
-    // length λ = c / f is 1.87 L, nearly whatever the flag.
-    for r in RUNS.iter() {
+    // length λ = c / f is 1.87 L, nearly whatever the flag. Where gravity is small (8 and
+    // 12 m/s); at 4 m/s the drooping flag's waves are longer (2.3–2.4 L).
+    for r in RUNS.iter().filter(|r| r.speed >= 8.0) {
         let wavelength = r.stats.wave_speed / r.stats.frequency / WIDTH;
         assert!(
             (1.4..=2.4).contains(&wavelength),
@@ -164,12 +163,13 @@ fn its_drag_is_the_free_flag_drag_of_the_wind_code() {
     let area = WIDTH * HEIGHT;
     let c = 0.05 + 0.7 * (AREAL_DENSITY / (rho * HEIGHT)) * (area / (HEIGHT * HEIGHT)).powf(-1.25);
     assert!((c - 0.103).abs() < 0.005, "{c}");
-    // Within ±50 % (measured: 0.86–1.05 of it).
+    // Within ±35 % (measured: 0.72–1.07 of it; without the added mass of air it was
+    // 0.58–0.82, with lift smoothed over a tenth of the span too 0.47–0.73).
     for r in RUNS.iter() {
         let expected = c * 0.5 * rho * r.speed * r.speed * area;
         let ratio = r.drag / expected;
         assert!(
-            (0.5..=1.5).contains(&ratio),
+            (0.65..=1.35).contains(&ratio),
             "{}: {ratio:.2} of the code's {expected:.2} N",
             describe(r)
         );

@@ -26,10 +26,10 @@ pub(crate) const CLOTH_MAX_SUBSTEPS: u32 = 64;
 /// plate's added mass ρ π c / 4 per area (c the smaller side). The whole figure (about what
 /// potential flow gives a wave of the flag's length, 2ρ/|k| per area) overdoes it here, since
 /// the face law's lift already carries part of the air's reaction: a flag's drag comes out
-/// 1.3–1.7 times the free-flag drag of AS/NZS 1170.2 Appendix F and its tip swings 0.6 L. A
-/// quarter is fitted to the measurements: drag 0.86–1.05 of the code's at 4–12 m/s, waves
-/// 1.6–2.1 flag lengths long (1.87 measured by Raynaud & Mulleners 2026).
-const ADDED_MASS_SHARE: f32 = 0.25;
+/// 2.5–3.8 times the free-flag drag of AS/NZS 1170.2 Appendix F and its tip swings 0.9–1.3 L.
+/// An eighth is fitted to the measurements: drag 0.72–1.07 of the code's at 4–12 m/s, waves
+/// 1.7–1.8 flag lengths long where gravity is small (1.87 measured by Raynaud & Mulleners 2026).
+const ADDED_MASS_SHARE: f32 = 0.125;
 
 /// Most constraint iterations per substep: [`ParticleCloth::iterations`] is clamped to it.
 pub(crate) const CLOTH_MAX_ITERATIONS: usize = 64;
@@ -49,13 +49,14 @@ const MAX_NODE_MASS: f64 = 1e9;
 /// (stable at any step, no overshoot of the wind); then XPBD projection of stretch, shear and
 /// bend constraints, and velocities from the moved positions.
 ///
-/// Four readings make a thin sheet flap as flags do (waves 1.6–2.1 flag lengths long running
-/// to the free edge at 0.75–0.85 of the wind's speed, the tip swinging about half the length,
-/// f A / U ≈ 0.2, the drag of the wind code's free flag; see the report's "against
+/// Four readings make a thin sheet flap as flags do (waves about 1.8 flag lengths long running
+/// to the free edge at 0.74–0.99 of the wind's speed, the tip swinging 0.36–0.67 of the length,
+/// f A / U 0.15–0.28, the drag of the wind code's free flag; see the report's "against
 /// measurements"), where the face law alone gives a stiff, buzzing sheet:
 /// - **Pressure acts along the normal.** The face law's drag, ½ C_D ρ A |n·v_rel| |v_rel|,
 ///   pushes each node along its normal only (the mean of its faces' normals):
-///   (m + h K) v_n' = m v_n + h K u_n. Along −v_rel, as for a rigid plate, its share along
+///   (m + m_a + h K) v_n' = (m + m_a) v_n + h F_n + h K u_n, F_n the other forces' normal share
+///   and m_a the added mass below. Along −v_rel, as for a rigid plate, its share along
 ///   the sheet would be a pressure pulling the cloth taut from its free edge, which damps every
 ///   wave.
 /// - **Along the sheet, skin friction**, ½ ρ C_f |v_t| v_t on each side, C_f = 0.005
@@ -66,8 +67,10 @@ const MAX_NODE_MASS: f64 = 1e9;
 ///   Mahadevan 2005) and round a finite sheet's edges it falls further, so waves shorter than
 ///   the sheet are driven less.
 /// - **The air moves with the sheet.** Across itself a node accelerates its added mass of air
-///   too (a quarter of a plate's ρ π c / 4 per area): m + m_a in the normal update
-///   above. The constraints still move nodes with their own mass.
+///   too (an eighth of a plate's ρ π c / 4 per area): m + m_a in the normal update
+///   above. The constraints still move nodes with their own mass, and
+///   [`ParticleCloth::aerodynamic_force`] leaves out the added mass's reaction (zero on
+///   average).
 ///
 /// At least [`ParticleCloth::min_substeps`] substeps per step, more (up to
 /// [`ParticleCloth::MAX_SUBSTEPS`](crate::aero::ParticleCloth::MAX_SUBSTEPS)) to keep h × lift rate ≤ 1/4; past that cap the lift is limited to
@@ -372,8 +375,8 @@ impl ParticleCloth {
             let u = self.wind[i];
             let (v_n, u_n) = (v.dot(n), u.dot(n));
             let inertia = m + self.added_mass;
-            let v_n = before + (v_n - before) * (m / inertia);
-            let normal = (v_n + h * k * u_n / inertia) / (1.0 + h * k / inertia);
+            let carried = before + (v_n - before) * (m / inertia);
+            let normal = (carried + h * k * u_n / inertia) / (1.0 + h * k / inertia);
             let (v_t, u_t) = (v - n * v_n, u - n * u_n);
             let along = (v_t + h * f * u_t / m) / (1.0 + h * f / m);
             let v = along + n * normal;
