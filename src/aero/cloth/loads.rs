@@ -12,9 +12,8 @@ use super::screen::screen_grid;
 const SKIN_FRICTION: f32 = 0.005;
 /// The face law's lift is smoothed over this fraction of the cloth's smaller side (see
 /// [`screen_grid`]): waves shorter than about the span are driven less, as the air flows round
-/// a finite sheet's edges. Half the span (a tenth before) puts a flag's waves at about 1.8 of
-/// its length where flags' are 1.87 (Raynaud & Mulleners 2026, 48 paper flags of several aspect
-/// ratios).
+/// a finite sheet's edges. Half the span puts a flag's waves at about 1.8 of its length where
+/// flags' are 1.87 (Raynaud & Mulleners 2026, 48 paper flags of several aspect ratios).
 const LIFT_SMOOTHING: f32 = 0.5;
 
 impl ParticleCloth {
