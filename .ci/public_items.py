@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Counts the public items reachable from the crate root in rustdoc's JSON output: structs,
-enums, functions, constants, statics, traits, type aliases and macros (not modules, fields,
-methods, variants or associated items), each once however many paths reach it. Deprecated
-aliases kept for one release are listed apart and not counted.
+"""Counts the public surface reachable from the crate root in rustdoc's JSON output: the items
+(structs, enums, functions, constants, statics, traits, type aliases and macros; not modules,
+fields or variants), each once however many paths reach it, and the methods and associated
+constants and types of their inherent impls (trait impls are the traits' surface, not ours).
+Deprecated items are listed apart.
 
 Usage: public_items.py target/doc/bevy_windfall.json [--list] [--max N]
 """
@@ -61,13 +62,31 @@ def main():
             bucket.setdefault(item["id"], (kind, name))
 
     walk(doc["root"], ["bevy_windfall"])
+    members = {}  # (owner, member) -> kind, for the inherent impls of the items counted
+    for item_id, (kind, name) in list(seen.items()) + list(deprecated.items()):
+        inner = index[str(item_id)]["inner"].get(kind, {})
+        for impl_id in inner.get("impls", []):
+            impl = index.get(str(impl_id), {}).get("inner", {}).get("impl")
+            if not impl or impl.get("trait") is not None or impl.get("is_synthetic"):
+                continue
+            for member_id in impl["items"]:
+                member = index.get(str(member_id))
+                if member is None or member["visibility"] != "public":
+                    continue
+                member_kind = kind_of(member)
+                if member_kind in ("function", "assoc_const", "assoc_type"):
+                    members[(name, member["name"])] = member_kind
     if listing:
         for kind, name in sorted(seen.values(), key=lambda x: x[1]):
             print(f"{kind:10} {name}")
         for kind, name in sorted(deprecated.values(), key=lambda x: x[1]):
             print(f"{kind:10} {name} (deprecated)")
+        for (owner, member), kind in sorted(members.items()):
+            print(f"{kind:10} {owner}::{member}")
+    methods = sum(1 for k in members.values() if k == "function")
     print(f"public items reachable from the crate root: {len(seen)}"
-          f" (and {len(deprecated)} deprecated aliases)")
+          f" (and {len(deprecated)} deprecated); their methods: {methods}, associated"
+          f" constants and types: {len(members) - methods}; in all {len(seen) + len(members)}")
     if limit is not None and len(seen) > limit:
         print(f"more than the budget of {limit}", file=sys.stderr)
         sys.exit(1)

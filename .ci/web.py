@@ -3,29 +3,32 @@
 
 On wasm, Bevy's `save_to_disk` encodes the PNG, wraps it in a Blob URL and clicks an
 `<a download="NAME.png">` link: each screenshot is a browser *download*. This script serves
-SITE_DIR over HTTP on 127.0.0.1, starts Chromium (headless, or with `--headed` a window for
+SITE_DIR over HTTP on 127.0.0.1 with web/serve.py (compressed), starts Chromium (headless, or with `--headed` a window for
 xvfb-run; WebGPU on SwiftShader, `--webgl2` without the WebGPU flags for a WebGL2 build, or
 `--gpu-flags` of your own), tells it through the Chrome
 DevTools Protocol to accept downloads into OUT_DIR, opens index.html?QUERY, echoes the page's
 console (also to OUT_DIR/console.log; Chromium's stderr goes to OUT_DIR/chromium.log) and waits
-until every expected file has arrived.
+until every expected file has arrived (or, with --expect-notice, until the page's notice shows
+the text). It also follows the page's loading indicator once a second and reports the bytes each
+file took on the wire.
 
 CDP normally speaks WebSocket, which the standard library lacks, so Chromium is started with
 `--remote-debugging-pipe`: it reads commands on its fd 3 and writes replies and events on its
 fd 4, each message a JSON object terminated by a NUL byte.
 
-Usage: web.py SITE_DIR OUT_DIR [--url-query Q] --expect A.png,B.png [--timeout S] [--webgl2]
-              [--viewport WxH] [--headed] [--gpu-flags "FLAGS"]
+Usage: web.py SITE_DIR OUT_DIR [--url-query Q] (--expect A.png,B.png | --expect-notice TEXT)
+              [--timeout S] [--webgl2] [--viewport WxH] [--headed] [--gpu-flags "FLAGS"]
 
 WebGPU on SwiftShader needs Chromium's Vulkan on SwiftShader too (`--use-vulkan=swiftshader`):
 without it the device is lost at the first frame a page presents to a canvas ("A valid external
 Instance reference no longer exists"), headless and headed alike (docs/live.md, "Browsers").
-Exit 0 once all expected files are there; 1 on timeout (listing the missing) or if Chromium dies.
+Exit 0 once all expected files are there, the indicator showed the download and the shaders
+compiling before the first frame and then the scene, and the console showed no error; 1 otherwise
+(a timeout lists the missing files), or if Chromium dies.
 """
 import argparse
 import fcntl
-import functools
-import http.server
+import base64
 import json
 import os
 import queue
@@ -43,15 +46,11 @@ START = time.monotonic()
 WEBGPU = "navigator.gpu ? 'navigator.gpu present' : 'no webgpu'"
 
 
-class Handler(http.server.SimpleHTTPRequestHandler):
-    extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map,
-                      ".wasm": "application/wasm", ".js": "text/javascript"}
-    log_message = lambda self, *args: None  # quiet
-
-
 def serve(site):
-    server = http.server.ThreadingHTTPServer(
-        ("127.0.0.1", 0), functools.partial(Handler, directory=site))
+    """web/serve.py's server (compressed files to browsers that take them) on a free port."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "web"))
+    import serve as web_serve
+    server = web_serve.server(site)
     threading.Thread(target=server.serve_forever, daemon=True).start()
     return server.server_address[1]
 
@@ -147,7 +146,9 @@ def main():
     ap.add_argument("site")
     ap.add_argument("out")
     ap.add_argument("--url-query", default="")
-    ap.add_argument("--expect", required=True, help="comma-separated file names")
+    ap.add_argument("--expect", default="", help="comma-separated file names")
+    ap.add_argument("--expect-notice", default=None,
+                    help="wait for the page's notice to show this text instead of files")
     ap.add_argument("--timeout", type=float, default=600, help="seconds")
     ap.add_argument("--webgl2", action="store_true", help="no WebGPU flags: WebGL2 fallback")
     ap.add_argument("--viewport", default="640x360", help="the page's size, WxH")
@@ -157,6 +158,8 @@ def main():
     args = ap.parse_args()
     site, out = os.path.abspath(args.site), os.path.abspath(args.out)
     expected = [name for name in args.expect.split(",") if name]
+    if not expected and args.expect_notice is None:
+        sys.exit("web.py: --expect FILES or --expect-notice TEXT")
     os.makedirs(out, exist_ok=True)
     for name in set(expected) & set(os.listdir(out)):  # a stale copy would count as arrived,
         os.remove(os.path.join(out, name))           # and the new one would be "NAME (1).png"
@@ -187,13 +190,21 @@ def main():
         shutil.rmtree(profile, ignore_errors=True)
 
 
+# The page's loading indicator and notice, as one line of text.
+PAGE_STATE = """(() => {
+  const loading = document.getElementById('loading'), notice = document.getElementById('notice');
+  return (loading && !loading.hidden ? 'loading: ' + document.getElementById('status').textContent
+          : 'drawing') + (notice && !notice.hidden ? ' | notice: ' + notice.textContent : '');
+})()"""
+
+
 def run(browser, port, out, expected, args, say):
     browser.send("Browser.setDownloadBehavior",
                  {"behavior": "allow", "downloadPath": out, "eventsEnabled": True})
     target = browser.send("Target.createTarget", {"url": "about:blank"})["targetId"]
     session = browser.send("Target.attachToTarget",
                            {"targetId": target, "flatten": True})["sessionId"]
-    for domain in ("Runtime", "Log", "Page"):
+    for domain in ("Runtime", "Log", "Page", "Network"):
         browser.send(domain + ".enable", session=session)
     # The page's viewport, as the native examples' window (--window-size counts the browser's
     # frame too).
@@ -201,13 +212,21 @@ def run(browser, port, out, expected, args, say):
     browser.send("Emulation.setDeviceMetricsOverride", {"width": width, "height": height,
                  "deviceScaleFactor": 1, "mobile": False}, session=session)
 
-    def evaluate(expression):  # a busy page may not answer: that must not end the wait
+    def evaluate(expression, timeout=10):  # a busy page may not answer: not the end of the wait
         try:
             result = browser.send("Runtime.evaluate", {"expression": expression,
-                                  "awaitPromise": True}, session=session, timeout=10)["result"]
+                                  "awaitPromise": True}, session=session, timeout=timeout)["result"]
             return remote_text(result)
         except (OSError, RuntimeError) as e:
             return "(no answer: %s)" % e
+
+    def page_png(name):  # the whole page (the canvas, the indicator, the notice) as the user sees it
+        try:
+            data = browser.send("Page.captureScreenshot", {"format": "png"}, session=session)["data"]
+            open(os.path.join(out, name), "wb").write(base64.b64decode(data))
+            say("page screenshot: %s" % name)
+        except (OSError, RuntimeError) as e:
+            say("no page screenshot %s: %s" % (name, e))
 
     url = "http://127.0.0.1:%d/index.html" % port + ("?" + args.url_query) * bool(args.url_query)
     say("chromium %s, opening %s" % (browser.send("Browser.getVersion")["product"], url))
@@ -216,7 +235,10 @@ def run(browser, port, out, expected, args, say):
     names = {}          # download guid -> suggested file name
     completed = set()   # file names whose download Chromium reports completed
     sizes = {}          # file name -> (size, since when), for a download without events
-    deadline, next_report = START + args.timeout, time.monotonic() + 30
+    requests = {}       # request id -> url, for the bytes each file took on the wire
+    errors = []         # console errors and exceptions: a clean page has none
+    states = []         # the indicator's states in order ("loading: ...", "drawing")
+    deadline, next_report, next_state = START + args.timeout, time.monotonic() + 30, 0
     while True:
         try:
             event = browser.events.get(timeout=0.5)
@@ -225,12 +247,19 @@ def run(browser, port, out, expected, args, say):
         method, p = event.get("method"), event.get("params", {})
         if (line := console_line(event)) is not None:
             say(line)
+            if line.startswith(("exception:", "console.error:", "log.error:")):
+                errors.append(line)
         elif method == "Page.loadEventFired" and event.get("sessionId") == session:
             say("loaded; %s; webgl2 context: %s" % (evaluate(WEBGPU), evaluate(
                 "!!document.createElement('canvas').getContext('webgl2')")))
+        elif method == "Network.requestWillBeSent":
+            requests[p["requestId"]] = p["request"]["url"].split("?")[0].rsplit("/", 1)[-1]
+        elif method == "Network.loadingFinished" and p["requestId"] in requests:
+            say("fetched %s: %d bytes on the wire" % (requests[p["requestId"]],
+                                                      p["encodedDataLength"]))
         elif method == "Browser.downloadWillBegin":
             names[p["guid"]] = p["suggestedFilename"]
-            say("download begins: %s" % p["suggestedFilename"])
+            say("download begins: %s (page: %s)" % (p["suggestedFilename"], states[-1:] or "?"))
         elif method == "Browser.downloadProgress" and p["state"] != "inProgress":
             name = names.get(p["guid"], p["guid"])
             say("download %s: %s (%d bytes)" % (p["state"], name, p.get("receivedBytes", 0)))
@@ -242,19 +271,33 @@ def run(browser, port, out, expected, args, say):
             say("FAIL: chromium exited (code %s)" % browser.proc.poll())
             return 1
 
+        now = time.monotonic()
+        if now >= next_state:  # the indicator, once a second: each new state logged, once
+            next_state = now + 1
+            state = evaluate(PAGE_STATE, timeout=5)
+            if not state.startswith("(no answer") and (not states or states[-1] != state):
+                states.append(state)
+                say("page: %s" % state)
+                if state.startswith("loading: compiling") and not any(
+                        s.startswith("loading: compiling") for s in states[:-1]):
+                    page_png("page_compiling.png")
         partial = any(f.endswith(".crdownload") for f in os.listdir(out))
         done = []
         for n in (n for n in expected if os.path.exists(os.path.join(out, n))):
             size = os.path.getsize(os.path.join(out, n))
             if sizes.get(n, (None,))[0] != size:
-                sizes[n] = (size, time.monotonic())
-            stable = size > 0 and time.monotonic() - sizes[n][1] > 2 and not partial
+                sizes[n] = (size, now)
+            stable = size > 0 and now - sizes[n][1] > 2 and not partial
             if n in completed or stable:
                 done.append(n)
-        if len(done) == len(expected):
-            say("all %d files are in %s: %s" % (len(done), out, ", ".join(done)))
-            return 0
-        now = time.monotonic()
+        notice = args.expect_notice is not None and any(
+            "notice: " in s and args.expect_notice in s.split("notice: ", 1)[1] for s in states)
+        if (expected and len(done) == len(expected)) or notice:
+            if notice:
+                time.sleep(1)
+                page_png("page_notice.png")
+            say("done: %s" % (", ".join(done) or "the notice is shown"))
+            return verdict(states, errors, args, say)
         if now >= deadline:
             say("FAIL: timeout after %ss; missing %s (have %s); page title %r" % (
                 args.timeout, ", ".join(n for n in expected if n not in done),
@@ -268,6 +311,23 @@ def run(browser, port, out, expected, args, say):
             if isinstance(title, str) and title.startswith("error"):
                 say("FAIL: the page failed: %s" % title)
                 return 1
+
+
+def verdict(states, errors, args, say):
+    """The page's checks once the run is done: the loading indicator showed the download and
+    the shaders compiling before the first frame, then gave way to the scene; no console errors."""
+    failures = list(errors)
+    first_drawn = next((i for i, s in enumerate(states) if s.startswith("drawing")), None)
+    before = states[:first_drawn]
+    if not any(s.startswith("loading: downloading") for s in before):
+        failures.append("the indicator never showed the download before the first frame")
+    if not any(s.startswith("loading: compiling") for s in before):
+        failures.append("the indicator never said it was compiling shaders before the first frame")
+    if first_drawn is None:
+        failures.append("the indicator never gave way to the scene")
+    for failure in failures:
+        say("FAIL: %s" % failure)
+    return 1 if failures else 0
 
 
 if __name__ == "__main__":

@@ -112,7 +112,7 @@ fn faces(c: &mut Criterion) {
         let mut procedural = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
         group.bench_function(format!("flag_step_{columns}x{rows}/procedural"), |b| {
             b.iter(|| {
-                procedural.advance(DT, params.wind_speed);
+                procedural.advance(DT, params.wind_steps_per_frame);
                 procedural.rebuild();
                 black_box(procedural.positions()[0])
             })

@@ -3,7 +3,7 @@
 //!
 //! Run: `cargo bench --bench cloth`. Figures are in the README's Performance section.
 
-use bevy_windfall::cloth::Cloth;
+use bevy_windfall::cloth::mesh;
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -29,13 +29,13 @@ fn frame(c: &mut Criterion) {
             };
             let params = preset.params();
             let mut sim = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
-            let mut mesh = Cloth::mesh(size, size, sim.positions());
+            let mut mesh = mesh::build(size, size, sim.positions());
             let name = format!("{size}x{size}/{preset:?}");
             group.bench_function(BenchmarkId::new("step_rebuild_mesh", name), |b| {
                 b.iter(|| {
-                    sim.advance(1.0 / 64.0, params.wind_speed);
+                    sim.advance(1.0 / 64.0, params.wind_steps_per_frame);
                     sim.rebuild();
-                    Cloth::write_mesh(&mut mesh, size, size, black_box(sim.positions()));
+                    mesh::write(&mut mesh, size, size, black_box(sim.positions()));
                 })
             });
         }
@@ -52,13 +52,13 @@ fn frame(c: &mut Criterion) {
         };
         let params = ClothPreset::FlagFlappingFrozen.params();
         let mut sim = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
-        let mut mesh = Cloth::mesh(size, size, sim.positions());
+        let mut mesh = mesh::build(size, size, sim.positions());
         let name = format!("64x64/stride_{stride}");
         group.bench_function(BenchmarkId::new("step_rebuild_mesh_lod", name), |b| {
             b.iter(|| {
-                sim.advance(1.0 / 64.0, params.wind_speed);
+                sim.advance(1.0 / 64.0, params.wind_steps_per_frame);
                 sim.rebuild_at_stride(1.0, stride);
-                Cloth::write_mesh(&mut mesh, size, size, black_box(sim.positions()));
+                mesh::write(&mut mesh, size, size, black_box(sim.positions()));
             })
         });
     }

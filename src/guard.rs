@@ -3,12 +3,6 @@
 
 use bevy::math::{Quat, Vec2, Vec3};
 
-/// Largest accepted size of a body (a falling plate, a rigid plate), m: far beyond any use, small enough that every derived number stays
-/// finite in f32.
-pub(crate) const MAX_SIZE: f32 = 1.0e3;
-/// Smallest accepted size of a body, m (0.1 µm).
-pub(crate) const MIN_SIZE: f32 = 1.0e-7;
-
 /// Largest coordinate, m, a simulated pose may have. Beyond it an f32 position cannot resolve a
 /// metre (its spacing exceeds 1 m at 1.7e7), far past any motion this crate makes, and products
 /// of positions would overflow long before f32::MAX.

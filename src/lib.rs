@@ -271,8 +271,6 @@ pub mod prelude {
         FallPlugin, FallPreset, FallSettings, FallState, FallingObject, Fluid, Landed, LeafCloud,
         LeafCloudPlugin, PrimitiveMotion, Shape,
     };
-    #[allow(deprecated)]
-    pub use crate::freefall::{FreeFallPlugin, FreeFallSettings};
     pub use crate::lod::{LodFocus, LodView};
     pub use crate::spectrum::fbm;
     pub use crate::wind::{

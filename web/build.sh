@@ -1,12 +1,14 @@
 #!/bin/sh
 # The showcase for the browser: `web/build.sh [webgl2|webgpu]` builds it into target/web/BACKEND
-# (index.html, showcase.js, showcase_bg.wasm), a static folder any file server can serve:
-#   python3 -m http.server -d target/web/webgl2 8000    then open http://127.0.0.1:8000
+# (index.html, showcase.js, showcase_bg.wasm, and a .gz of each big file), a static folder:
+#   python3 web/serve.py target/web/webgl2        then open http://127.0.0.1:8000
+# (web/serve.py sends the .gz files to browsers that take them; any static server works.)
 # webgl2 (the default) runs in every browser; webgpu needs a browser with WebGPU. Bevy picks its
 # backend at build time; the crate's shaders pick storage buffers or textures at run time
-# (`GpuLayout`). It installs what it needs when missing: the wasm32 target and wasm-bindgen-cli
-# (the version in Cargo.lock); wasm-opt (binaryen 116 or later) shrinks the result when it is on
-# the PATH.
+# (`GpuLayout`). It installs what it needs when missing: the wasm32 target, wasm-bindgen-cli (the
+# version in Cargo.lock, about 8 minutes once) and wasm-opt (binaryen from npm, which runs on
+# Node.js; Debian's binaryen 108 is too old for wasm-bindgen's output). The first build takes
+# 20-30 minutes on two cores; the profile `web` (Cargo.toml) optimises for size with LTO.
 set -eu
 backend=${1:-webgl2}
 case "$backend" in
@@ -17,6 +19,7 @@ webgl2 | webgpu) ;;
     ;;
 esac
 cd "$(dirname "$0")/.."
+started=$(date +%s)
 rustup target add wasm32-unknown-unknown >/dev/null
 version=$(sed -n '/^name = "wasm-bindgen"$/{n;s/^version = "\(.*\)"$/\1/p;}' Cargo.lock)
 [ -n "$version" ] || {
@@ -28,6 +31,22 @@ if ! wasm-bindgen --version 2>/dev/null | grep -q " $version\$"; then
     # no longer offers.
     cargo install wasm-bindgen-cli --version "$version"
 fi
+# wasm-opt from binaryen 116 or later: the one on the PATH, else npm's package in target/.
+wasm_opt=wasm-opt
+opt_version=$(wasm-opt --version 2>/dev/null | sed -n 's/^wasm-opt version \([0-9]*\).*/\1/p')
+if [ "${opt_version:-0}" -lt 116 ]; then
+    tools=target/web-tools
+    wasm_opt=$tools/node_modules/.bin/wasm-opt
+    if [ ! -x "$wasm_opt" ]; then
+        command -v npm >/dev/null || {
+            echo "web/build.sh needs wasm-opt (binaryen 116 or later) or npm to install it" >&2
+            exit 1
+        }
+        npm install --silent --no-audit --no-fund --prefix "$tools" binaryen@132
+    fi
+fi
+# WebAssembly SIMD (simd128) for the leaves' lane step: every current browser has it.
+export CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS="${CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS:-} -C target-feature=+simd128"
 features="render,egui,bevy/web,bevy/$backend"
 cargo build --locked --profile web --target wasm32-unknown-unknown --example showcase \
     --features "$features"
@@ -37,17 +56,18 @@ rm -rf "$out"
 mkdir -p "$out"
 wasm-bindgen --no-typescript --target web --out-dir "$out" --out-name showcase \
     "$target/wasm32-unknown-unknown/web/examples/showcase.wasm"
-# wasm-opt before binaryen 116 breaks wasm-bindgen's reference-typed function table.
-opt_version=$(wasm-opt --version 2>/dev/null | sed -n 's/^wasm-opt version \([0-9]*\).*/\1/p')
-if [ "${opt_version:-0}" -ge 116 ]; then
-    before=$(wc -c <"$out/showcase_bg.wasm")
-    if wasm-opt -Os --all-features "$out/showcase_bg.wasm" -o "$out/opt.wasm"; then
-        mv "$out/opt.wasm" "$out/showcase_bg.wasm"
-        echo "wasm-opt: $before -> $(wc -c <"$out/showcase_bg.wasm") bytes"
-    else
-        rm -f "$out/opt.wasm"
-        echo "wasm-opt failed: the wasm is left as wasm-bindgen wrote it"
-    fi
-fi
-cp web/index.html "$out/"
+before=$(wc -c <"$out/showcase_bg.wasm")
+# The features Rust's wasm32 target uses by default, and SIMD.
+"$wasm_opt" -Os --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
+    --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd \
+    "$out/showcase_bg.wasm" -o "$out/opt.wasm"
+mv "$out/opt.wasm" "$out/showcase_bg.wasm"
+bytes=$(wc -c <"$out/showcase_bg.wasm")
+sed "s/__WASM_BYTES__/$bytes/" web/index.html >"$out/index.html"
+for file in showcase_bg.wasm showcase.js; do
+    gzip -9 -k -f "$out/$file"
+done
+packed=$(wc -c <"$out/showcase_bg.wasm.gz")
+echo "showcase_bg.wasm: $bytes bytes ($before before wasm-opt), $packed gzipped;" \
+    "built in $(($(date +%s) - started)) s"
 ls -l "$out"

@@ -2,7 +2,7 @@
 //! physical one; harmonics kept by the descriptor's low-pass filter against shape error and
 //! build time; grid size against run time.
 
-use bevy_windfall::cloth::Cloth;
+use bevy_windfall::cloth::mesh;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -22,12 +22,12 @@ const DT: f32 = 1.0 / 64.0;
 /// Mean seconds per frame (advance, rebuild, mesh write).
 fn seconds_per_frame(sim: &mut ClothSim, repeats: usize) -> f64 {
     let g = *sim.grid();
-    let mut mesh = Cloth::mesh(g.rows, g.columns, sim.positions());
-    let speed = sim.params().wind_speed;
+    let mut mesh = mesh::build(g.rows, g.columns, sim.positions());
+    let speed = sim.params().wind_steps_per_frame;
     seconds_per(FRAMES * repeats, || {
         sim.advance(DT, speed);
         sim.rebuild();
-        Cloth::write_mesh(&mut mesh, g.rows, g.columns, black_box(sim.positions()));
+        mesh::write(&mut mesh, g.rows, g.columns, black_box(sim.positions()));
     })
 }
 
@@ -107,7 +107,7 @@ pub fn report(r: &mut Report) {
         let mut error = 0.0f64;
         for _ in 0..FRAMES {
             for s in [&mut sim, &mut truth] {
-                s.advance(DT, base.wind_speed);
+                s.advance(DT, base.wind_steps_per_frame);
                 s.rebuild();
             }
             let sq: f64 = sim
@@ -164,9 +164,9 @@ pub fn report(r: &mut Report) {
             columns: size,
             ..grid
         };
-        let non_frozen = ClothPreset::FlagFlappingEvolving.params();
+        let evolving = ClothPreset::FlagFlappingEvolving.params();
         let mut a = ClothSim::new(grid, base, ClothAttachment::Pole).expect("valid cloth");
-        let mut b = ClothSim::new(grid, non_frozen, ClothAttachment::Pole).expect("valid cloth");
+        let mut b = ClothSim::new(grid, evolving, ClothAttachment::Pole).expect("valid cloth");
         let repeats = if r.quick {
             1
         } else {
@@ -219,12 +219,12 @@ fn flapping(r: &mut Report) {
     let mut rows = Vec::new();
     for preset in ClothPreset::ALL {
         let params = preset.params();
-        let stats = procedural(grid, params, params.wind_speed, seconds);
-        let u = ClothSim::speed_of_steps(params.wind_speed, grid.width);
+        let stats = procedural(grid, params, params.wind_steps_per_frame, seconds);
+        let u = ClothSim::speed_of_steps(params.wind_steps_per_frame, grid.width);
         rows.push(vec![
             format!("{preset:?}"),
             preset.observation().into(),
-            format!("{}", params.wind_speed),
+            format!("{}", params.wind_steps_per_frame),
             format!("{u:.1}"),
             format!("{:.3}", stats.bend),
             format!("{:.3}", stats.swing),

@@ -75,7 +75,7 @@ pub fn report(r: &mut Report) {
     let mut flag = ClothSim::new(grid, params, ClothAttachment::Pole).expect("valid flag");
     let frames = n / 20;
     let procedural = seconds_per(frames, || {
-        flag.advance(DT, params.wind_speed);
+        flag.advance(DT, params.wind_steps_per_frame);
         flag.rebuild();
     });
     let mut cloth =

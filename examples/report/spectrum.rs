@@ -3,7 +3,7 @@
 use std::hint::black_box;
 
 use bevy_windfall::spectrum::fbm;
-#[path = "../../tests/common/measure.rs"]
+#[path = "../../tests/it/common/measure.rs"]
 mod measure;
 use measure::{fit_slope, line_spectrum};
 use rustfft::{FftPlannerScalar, num_complex::Complex};

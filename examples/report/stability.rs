@@ -309,7 +309,7 @@ fn cloth_rows(rows: &mut Vec<Vec<String>>) {
     };
     let params = ClothParams {
         amplitude: PI,
-        wind_speed: 50.0,
+        wind_steps_per_frame: 50.0,
         swirl: 50.0,
         ..ClothParams::default()
     };

@@ -2,7 +2,7 @@
 //! Fourier-descriptor yarns driven by 1/f^β noise and the shared wind field, each with its Table 1
 //! preset named on screen; and the procedural flag beside the physical one (a `PhysicalCloth`:
 //! particles pushed by per-face lift and drag). V cycles them, F switches to the same object's
-//! row of the other wind model (frozen or non-frozen).
+//! row of the other wind model (frozen or evolving).
 
 use bevy::asset::RenderAssetUsages;
 use bevy::image::Image;
@@ -27,8 +27,8 @@ pub enum Fabric {
 
 impl Fabric {
     /// Table 1 row for this fabric in a gentle breeze.
-    pub fn preset(self, non_frozen: bool) -> ClothPreset {
-        match (self, non_frozen) {
+    pub fn preset(self, evolving: bool) -> ClothPreset {
+        match (self, evolving) {
             (Self::Flag | Self::Physical, false) => ClothPreset::FlagFlappingFrozen,
             (Self::Flag | Self::Physical, true) => ClothPreset::FlagFlappingEvolving,
             (Self::Banner, false) => ClothPreset::BannerFlappingFrozen,
@@ -86,11 +86,8 @@ pub fn plugin(app: &mut App) {
     // `--fabric flag|banner|curtain|physical` picks the first fabric.
     let fabric = app
         .world()
-        .get_resource::<super::common::ExampleArgs>()
-        .and_then(|args| {
-            let name = args.rest.windows(2).find(|w| w[0] == "--fabric")?[1].clone();
-            Fabric::ALL.into_iter().find(|f| f.name() == name)
-        })
+        .resource::<super::common::ExampleArgs>()
+        .choice("--fabric", &Fabric::ALL.map(|f| (f.name(), f)))
         .unwrap_or_default();
     app.insert_resource(fabric)
         .add_systems(Startup, paint_textures)
@@ -282,8 +279,8 @@ fn grid(rows: usize, columns: usize, width: f32, height: f32) -> ClothGrid {
 }
 
 /// The cloth for the current [`Fabric`]: its Table 1 preset, grid, edge and place.
-pub fn cloth_for(fabric: Fabric, non_frozen: bool) -> (Cloth, Transform) {
-    let params = fabric.preset(non_frozen).params();
+pub fn cloth_for(fabric: Fabric, evolving: bool) -> (Cloth, Transform) {
+    let params = fabric.preset(evolving).params();
     let pole = Transform::from_xyz(0.05, 5.95, 0.0);
     let (grid, attachment, transform) = match fabric {
         Fabric::Flag | Fabric::Physical => (grid(28, 42, 2.1, 1.4), ClothAttachment::Pole, pole),
@@ -316,8 +313,8 @@ fn keys(
     }
     if keys.just_pressed(KeyCode::KeyF) {
         // The same object and band of Table 1 in the other wind model: the whole row.
-        let non_frozen = !matches!(cloth.params.model, ClothWindModel::Evolving { .. });
-        let (fresh, _) = cloth_for(*fabric, non_frozen);
+        let evolving = !matches!(cloth.params.model, ClothWindModel::Evolving { .. });
+        let (fresh, _) = cloth_for(*fabric, evolving);
         cloth.params = fresh.params;
     }
 }
@@ -431,8 +428,8 @@ fn show_info(
         return;
     };
     let p = &cloth.params;
-    let non_frozen = matches!(p.model, ClothWindModel::Evolving { .. });
-    let preset = fabric.preset(non_frozen);
+    let evolving = matches!(p.model, ClothWindModel::Evolving { .. });
+    let preset = fabric.preset(evolving);
     let physical = if *fabric == Fabric::Physical {
         "left: PhysicalCloth (particles, lift and drag)   right: procedural Cloth\n"
     } else {
@@ -441,10 +438,10 @@ fn show_info(
     info.0 = format!(
         "{physical}{}: Table 1 row \"{}\", {} wind (theta {:.1}, beta {:.2}, swirl |u| {}, band {})\n\
          wind here {:.1} m/s -> |v| = {:.1} cells/frame      V flag/banner/curtain/physical   \
-         F frozen/non-frozen",
-        preset.kind(),
+         F frozen/evolving",
+        preset.kind().name(),
         preset.observation(),
-        if non_frozen { "non-frozen" } else { "frozen" },
+        if evolving { "evolving" } else { "frozen" },
         p.amplitude,
         p.beta,
         p.swirl,
@@ -454,6 +451,6 @@ fn show_info(
             HarmonicFilter::BandPass { min, max } => format!("[{min}, {max}]"),
         },
         wind.velocity(at.translation()).length(),
-        state.wind_speed,
+        state.wind_steps_per_frame,
     );
 }

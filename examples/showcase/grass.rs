@@ -1,13 +1,17 @@
 //! A meadow of grass blades that sway on the GPU in the same wind that carries the leaves: one
-//! mesh of [`BLADES`] blades (one draw), bent vertex by vertex by a [`WindSwayMaterial`].
+//! mesh of [`BLADES`] blades by default (one draw), bent vertex by vertex by a [`WindSwayMaterial`].
 
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
 use bevy_windfall::gpu::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 
-/// Blades in the meadow.
+/// Blades in the meadow by default.
 pub const BLADES: usize = 120_000;
+
+/// Blades in the meadow (`--blades N`).
+#[derive(Resource, Clone, Copy)]
+pub struct Blades(pub usize);
 /// Tallest blade, m.
 const TALLEST: f32 = 0.42;
 
@@ -65,16 +69,17 @@ pub fn blades(count: usize, min: Vec2, max: Vec2, seed: u64) -> Mesh {
     .with_inserted_indices(Indices::U32(indices))
 }
 
-/// Spawns the meadow's grass over `min`..`max`; returns its entity.
+/// Spawns the meadow's grass, `count` blades over `min`..`max`; returns its entity.
 pub fn spawn(
     commands: &mut Commands,
     meshes: &mut Assets<Mesh>,
     materials: &mut Assets<WindSwayMaterial>,
     wind: &WindGpuBuffers,
+    count: usize,
     min: Vec2,
     max: Vec2,
 ) -> Entity {
-    let mesh = meshes.add(blades(BLADES, min, max, 17));
+    let mesh = meshes.add(blades(count, min, max, 17));
     let material = materials.add(WindSwayMaterial {
         base: StandardMaterial {
             base_color: Color::WHITE,

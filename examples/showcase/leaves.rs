@@ -26,7 +26,13 @@ pub const STORM: u32 = 24_000;
 const REST: f32 = 2.0;
 
 pub fn plugin(app: &mut App) {
+    let args = app.world().resource::<common::ExampleArgs>();
+    // `--view tree|meadow` picks the first view, `--blades N` the meadow's grass.
+    let view = args.choice("--view", &[("tree", 0), ("meadow", 1)]);
+    let blades = args.number("--blades", 0..=super::grass::BLADES);
     app.insert_resource(Spawner(Canopy(Stream::new(99))))
+        .insert_resource(StartView(view.unwrap_or(0)))
+        .insert_resource(super::grass::Blades(blades.unwrap_or(super::grass::BLADES)))
         .init_resource::<View>()
         .add_systems(OnEnter(Scene::Leaves), setup)
         .add_systems(
@@ -105,6 +111,10 @@ const VIEWS: [(Vec3, Vec3); 2] = [
     (Vec3::new(4.6, 1.4, 3.0), Vec3::new(2.2, 2.6, -0.6)),
     (Vec3::new(10.0, 3.2, 11.0), Vec3::new(1.0, 3.4, -0.5)),
 ];
+
+/// Which of [`VIEWS`] the camera starts at (`--view`).
+#[derive(Resource)]
+struct StartView(usize);
 
 /// Which of [`VIEWS`] the camera is at.
 #[derive(Resource, Default)]
@@ -193,17 +203,14 @@ fn setup(
     mut settings: ResMut<FallSettings>,
     mut swaying: ResMut<Assets<WindSwayMaterial>>,
     gpu: Res<WindGpuBuffers>,
-    args: Res<common::ExampleArgs>,
+    start: Res<StartView>,
+    blades: Res<super::grass::Blades>,
     mut view: ResMut<View>,
 ) {
     let here = DespawnOnExit(Scene::Leaves);
-    // Beside the tree, downwind of the trunk, looking up through the falling leaves.
-    // `--view meadow` starts over the meadow.
-    view.0 = usize::from(
-        args.rest
-            .windows(2)
-            .any(|w| w[0] == "--view" && w[1] == "meadow"),
-    );
+    // Beside the tree, downwind of the trunk, looking up through the falling leaves, or
+    // (`--view meadow`) over the meadow.
+    view.0 = start.0;
     let (eye, target) = VIEWS[view.0];
     place_camera(&mut camera, eye, target);
     let _ = wind.set_reference_speed(2.0);
@@ -250,6 +257,7 @@ fn setup(
         &mut meshes,
         &mut swaying,
         &gpu,
+        blades.0,
         Vec2::new(-7.0, -9.0),
         Vec2::new(11.0, 9.0),
     );

@@ -6,13 +6,18 @@
 //! Keys: 1 leaves, 2 coin, 3 flag, 4 gallery · G gizmos (off, wind, paths and yarns, all) ·
 //! ↑/↓ wind speed · ←/→ wind direction · in the leaves scene B a blast, C the view (a dust devil
 //! wanders anyway) · in the flag scene V flag/banner/curtain/physical (the procedural flag beside
-//! a particle one), F frozen/non-frozen (the curtain has a fan).
+//! a particle one), F frozen/evolving (the curtain has a fan).
 //!
 //! `cargo run --example showcase --features egui -- [--scene leaves|coin|flag|gallery]
-//! [--fabric flag|banner|curtain|physical] [--view meadow] [--gizmos] [--frames N] [--screenshot PATH] [--tour DIR]`
+//! [--fabric flag|banner|curtain|physical] [--view tree|meadow] [--blades N] [--gizmos]
+//! [--check-layout] [--frames N] [--screenshot PATH] [--tour DIR] [--window WxH] [--msaa N]`
+//! (on the web the page's address: `?scene=flag&blades=20000`).
 //!
 //! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits;
-//! `--gizmos` starts with the falling paths and cloth yarns drawn.
+//! `--gizmos` starts with the falling paths and cloth yarns drawn; `--blades N` sows N grass
+//! blades in the meadow (120 000 by default; a software renderer draws fewer faster);
+//! `--check-layout` visits every scene at 640 × 360, 960 × 540 and 1280 × 720 and fails if any
+//! on-screen text overlaps another or the panel.
 
 mod coin;
 #[path = "../common/mod.rs"]
@@ -62,6 +67,17 @@ impl Scene {
     }
 }
 
+/// The showcase's options besides the harness's (`--scene`'s and `--fabric`'s values are the
+/// scenes' and fabrics' names).
+const OPTIONS: common::SceneOptions = common::SceneOptions(&[
+    ("--scene", &["leaves", "coin", "flag", "gallery"]),
+    ("--fabric", &["flag", "banner", "curtain", "physical"]),
+    ("--view", &["tree", "meadow"]),
+    ("--blades", &["N"]),
+    ("--gizmos", &[]),
+    ("--check-layout", &[]),
+]);
+
 /// Lines a scene shows under the common header.
 #[derive(Resource, Default)]
 pub struct SceneInfo(pub String);
@@ -87,14 +103,9 @@ struct Tour {
 fn main() {
     let mut app = common::example_app("bevy_windfall: showcase");
     let args = app.world().resource::<common::ExampleArgs>().clone();
-    let option = |name: &str| {
-        args.rest
-            .windows(2)
-            .find(|w| w[0] == name)
-            .map(|w| w[1].clone())
-    };
-    let start = option("--scene")
-        .and_then(|s| Scene::ALL.into_iter().find(|scene| scene.name() == s))
+    app.insert_resource(OPTIONS);
+    let start = args
+        .choice("--scene", &Scene::ALL.map(|scene| (scene.name(), scene)))
         .unwrap_or_default();
     app.add_plugins(WindfallPlugins.set(WindPlugin::new(WindConfig {
         reference_speed: 2.5,
@@ -113,7 +124,10 @@ fn main() {
     .init_resource::<SceneInfo>()
     .add_plugins((leaves::plugin, coin::plugin, flag::plugin, gallery::plugin))
     .add_systems(Update, (switch_scene, toggle_gizmos, steer_wind, show_hud));
-    if let Some(dir) = args.tour {
+    if args.flag("--check-layout") {
+        app.init_resource::<LayoutTour>()
+            .add_systems(Last, layout_tour);
+    } else if let Some(dir) = args.tour.clone() {
         // On the web the screenshots are downloads: the browser chooses the folder.
         #[cfg(not(target_arch = "wasm32"))]
         std::fs::create_dir_all(&dir).expect("--tour: cannot create the folder");
@@ -130,7 +144,7 @@ fn main() {
     app.add_plugins(panel::plugin);
     // The camera and the header text outlive the scenes; each scene places the camera when it
     // is entered, which for the first scene happens before `Startup`.
-    let paths = args.rest.iter().any(|a| a == "--gizmos");
+    let paths = args.flag("--gizmos");
     let mut store = app.world_mut().resource_mut::<GizmoConfigStore>();
     let (_, wind) = store.config_mut::<WindGizmos>();
     *wind = WindGizmos {
@@ -231,6 +245,8 @@ fn tour(
     mut readiness: ResMut<common::Readiness>,
     done: Query<Entity, With<common::ScreenshotDone>>,
     mut next: ResMut<NextState<Scene>>,
+    mut check: MessageWriter<common::layout::CheckLayout>,
+    failures: Res<common::layout::LayoutFailures>,
     mut exit: MessageWriter<AppExit>,
 ) {
     tour.frames_in_scene += 1;
@@ -245,6 +261,7 @@ fn tour(
         tour.requested = true;
         let scene = Scene::ALL[tour.next];
         let path = tour.dir.join(format!("showcase_{}.png", scene.name()));
+        check.write(common::layout::CheckLayout(path.display().to_string()));
         common::take_screenshot(&mut commands, path);
         // The clock stands still from the request until the next scene has compiled: the
         // screenshot's read-back takes a varying number of frames.
@@ -258,8 +275,47 @@ fn tour(
         match Scene::ALL.get(tour.next) {
             Some(&scene) => next.set(scene),
             None => {
-                exit.write(AppExit::Success);
+                exit.write(common::exit_code(&failures));
             }
         }
+    }
+}
+
+/// `--check-layout`: which scene at which window size is being laid out.
+#[derive(Resource, Default)]
+struct LayoutTour {
+    step: usize,
+    frames: u32,
+}
+
+/// Visits every scene at each of these window sizes and checks its text once laid out.
+const LAYOUT_SIZES: [(u32, u32); 3] = [(640, 360), (960, 540), (1280, 720)];
+
+/// Frames a scene is given to lay its text out (fonts, the panel, labels following the camera).
+const LAYOUT_FRAMES: u32 = 12;
+
+fn layout_tour(
+    mut tour: ResMut<LayoutTour>,
+    mut window: Single<&mut Window>,
+    mut next: ResMut<NextState<Scene>>,
+    mut check: MessageWriter<common::layout::CheckLayout>,
+    failures: Res<common::layout::LayoutFailures>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    let Some(&(width, height)) = LAYOUT_SIZES.get(tour.step / Scene::ALL.len()) else {
+        exit.write(common::exit_code(&failures));
+        return;
+    };
+    let scene = Scene::ALL[tour.step % Scene::ALL.len()];
+    tour.frames += 1;
+    if tour.frames == 1 {
+        window.resolution.set(width as f32, height as f32);
+        next.set(scene);
+    } else if tour.frames == LAYOUT_FRAMES {
+        let name = format!("the {} scene at {width} x {height}", scene.name());
+        check.write(common::layout::CheckLayout(name));
+    } else if tour.frames > LAYOUT_FRAMES {
+        tour.step += 1;
+        tour.frames = 0;
     }
 }

@@ -13,8 +13,10 @@ use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::time::Time;
 
+use super::coefficients::AeroCoefficients;
+use super::error::AeroError;
 use super::force::face_force;
-use super::plate::{AeroCoefficients, AeroError, Face};
+use super::plate::Face;
 use crate::wind::WindField;
 
 /// Per-face lift and drag for an avian3d rigid body: put it beside `RigidBody::Dynamic` and a

@@ -10,7 +10,9 @@ use bevy::reflect::std_traits::ReflectDefault;
 use bevy::time::{Fixed, Time};
 use bevy::transform::components::Transform;
 
-use super::plate::{AeroCoefficients, AeroError, PlateState, RigidPlate};
+use super::coefficients::AeroCoefficients;
+use super::error::AeroError;
+use super::plate::{PlateState, RigidPlate};
 use crate::error::InvalidValue;
 use crate::wind::WindField;
 

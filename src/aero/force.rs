@@ -2,11 +2,6 @@
 
 use bevy::math::{DVec3, Vec3};
 
-/// Air at about 20 °C, kg/m³.
-pub(crate) const AIR_DENSITY: f32 = 1.204;
-/// Water at 25 °C, kg/m³.
-pub(crate) const WATER_DENSITY: f32 = 997.0;
-
 /// Drag plus lift on one face, N.
 ///
 /// `v_rel` = v_face − u is the face's velocity relative to the fluid, `normal` the face's normal
@@ -78,24 +73,32 @@ pub fn drag_rate(speed: f32, area: f32, drag: f32, density: f32, mass: f32) -> f
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::aero::AeroCoefficients;
 
     #[test]
     fn the_normal_may_have_any_finite_length() {
         let v = Vec3::new(2.0, -1.0, 0.5);
         let n = Vec3::new(0.3, 1.0, -0.2);
-        let unit = face_force(v, n, 0.01, 1.2, 0.9, AIR_DENSITY);
+        let unit = face_force(v, n, 0.01, 1.2, 0.9, AeroCoefficients::AIR_DENSITY);
         assert!(unit.length() > 1e-4);
         for scale in [1e-37f32, 1e-30, 1e-19, 1e19, 1e30, f32::MAX / 2.0] {
-            let f = face_force(v, n * scale, 0.01, 1.2, 0.9, AIR_DENSITY);
+            let f = face_force(v, n * scale, 0.01, 1.2, 0.9, AeroCoefficients::AIR_DENSITY);
             assert!(
                 (f - unit).length() <= 1e-5 * unit.length(),
                 "×{scale}: {f} vs {unit}"
             );
         }
         // A subnormal normal along an axis (its direction exact) acts as the unit one.
-        let up = face_force(v, Vec3::Y, 0.01, 1.2, 0.9, AIR_DENSITY);
+        let up = face_force(v, Vec3::Y, 0.01, 1.2, 0.9, AeroCoefficients::AIR_DENSITY);
         assert_eq!(
-            face_force(v, Vec3::Y * 1e-44, 0.01, 1.2, 0.9, AIR_DENSITY),
+            face_force(
+                v,
+                Vec3::Y * 1e-44,
+                0.01,
+                1.2,
+                0.9,
+                AeroCoefficients::AIR_DENSITY
+            ),
             up
         );
     }
@@ -104,7 +107,7 @@ mod tests {
     fn a_force_beyond_f32_is_clamped_not_dropped() {
         // Drag on a face moving at 1e30 m/s: far beyond f32, still finite and still opposing.
         let v = Vec3::new(1e30, 0.0, 0.0);
-        let f = face_force(v, Vec3::X, 1.0, 1.0, 0.0, WATER_DENSITY);
+        let f = face_force(v, Vec3::X, 1.0, 1.0, 0.0, AeroCoefficients::WATER_DENSITY);
         assert_eq!(f, Vec3::new(-f32::MAX, 0.0, 0.0));
         for bad in [f32::NAN, f32::INFINITY] {
             assert_eq!(face_force(v, Vec3::X, 1.0, bad, 0.0, 1.0), Vec3::ZERO);

@@ -16,9 +16,10 @@
 #[cfg(feature = "avian")]
 mod avian;
 mod body;
-mod cloth;
 mod coefficients;
+mod error;
 mod force;
+mod particles;
 mod physical_cloth;
 mod plate;
 mod plugin;
@@ -26,8 +27,10 @@ mod plugin;
 #[cfg(feature = "avian")]
 pub use avian::{AvianAero, AvianAeroPlugin};
 pub use body::{AeroBody, AeroBodyInvalid, AeroState};
-pub use cloth::{ParticleCloth, Pinning};
+pub use coefficients::AeroCoefficients;
+pub use error::AeroError;
 pub use force::face_force;
+pub use particles::{ParticleCloth, Pinning};
 pub use physical_cloth::{PhysicalCloth, PhysicalClothInvalid, PhysicalClothState};
-pub use plate::{AeroCoefficients, AeroError, Face, PlateState, RigidPlate};
+pub use plate::{Face, PlateState, RigidPlate};
 pub use plugin::AeroPlugin;

@@ -10,9 +10,10 @@ use bevy::reflect::std_traits::ReflectDefault;
 use bevy::time::{Fixed, Time};
 use bevy::transform::components::{GlobalTransform, Transform};
 
-use super::cloth::{ParticleCloth, Pinning};
-use super::plate::{AeroCoefficients, AeroError};
-use crate::cloth::{ClothGrid, cloth_mesh, write_cloth_mesh};
+use super::coefficients::AeroCoefficients;
+use super::error::AeroError;
+use super::particles::{ParticleCloth, Pinning};
+use crate::cloth::{ClothGrid, mesh};
 use crate::lifecycle::Described;
 use crate::wind::WindField;
 
@@ -142,7 +143,7 @@ impl Described for PhysicalCloth {
             ) {
                 Ok(sim) => {
                     if let Some(meshes) = meshes {
-                        let mesh = cloth_mesh(self.grid.rows, self.grid.columns, sim.positions());
+                        let mesh = mesh::build(self.grid.rows, self.grid.columns, sim.positions());
                         e.insert(Mesh3d(meshes.add(mesh)));
                     }
                     e.insert((
@@ -231,7 +232,7 @@ pub(super) fn write_cloth_meshes(
             } else {
                 shown.extend_from_slice(now);
             }
-            write_cloth_mesh(&mut mesh, g.rows, g.columns, &shown);
+            mesh::write(&mut mesh, g.rows, g.columns, &shown);
         }
     }
 }

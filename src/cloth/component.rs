@@ -3,13 +3,12 @@
 
 use bevy::asset::Assets;
 use bevy::ecs::prelude::*;
-use bevy::math::Vec3;
 use bevy::mesh::{Mesh, Mesh3d};
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::Transform;
 
-use super::mesh::{cloth_mesh, write_cloth_mesh};
+use super::mesh;
 use super::params::{ClothError, ClothGrid, ClothParams};
 use super::sim::{ClothAttachment, ClothSim};
 use crate::lifecycle::Described;
@@ -55,7 +54,7 @@ pub struct Cloth {
     /// Pole (flag, banner) or rod (curtain).
     pub attachment: ClothAttachment,
     /// With a [`WindField`](crate::wind::WindField), take speed (and, on a pole, direction) from the wind at the
-    /// entity's origin instead of `params.wind_speed`.
+    /// entity's origin instead of `params.wind_steps_per_frame`.
     pub follow_wind: bool,
 }
 
@@ -98,7 +97,7 @@ pub struct ClothState {
     /// Rotation about the pole (local Y), radians: the cloth turns to stream downwind.
     pub yaw: f32,
     /// Noise steps per paper frame used in the last step (|v|).
-    pub wind_speed: f32,
+    pub wind_steps_per_frame: f32,
     /// The grid's coarseness now and the cross-fade from the last one ([`ClothLod`]).
     #[reflect(ignore)]
     pub(super) detail: Detail,
@@ -143,9 +142,6 @@ impl crate::lod::HasLodTiers for ClothLod {
     }
 }
 
-/// Seconds over which a cloth cross-fades from one grid coarseness to another.
-pub(crate) const CLOTH_LOD_FADE: f32 = 0.5;
-
 /// A cloth's grid coarseness: the stride it is traced at, the one it fades from, and how far
 /// the fade has gone (1: done).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -179,14 +175,14 @@ impl Detail {
             self.stride = target;
         }
         let dt = if dt.is_finite() { dt.max(0.0) } else { 0.0 };
-        self.fade = (self.fade + dt / CLOTH_LOD_FADE).min(1.0);
+        self.fade = (self.fade + dt / ClothLod::FADE_SECONDS).min(1.0);
     }
 }
 
 /// Why a [`Cloth`] has no [`ClothState`] (logged once as a warning when it appears), or, with
 /// field `transform`, why it does not feel the [`WindField`](crate::wind::WindField): a cloth that follows the wind but
 /// whose global transform is not finite, not invertible or beyond
-/// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) flaps at its own `params.wind_speed` until the
+/// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) flaps at its own `params.wind_steps_per_frame` until the
 /// transform is fixed (then this goes).
 ///
 /// # Example
@@ -215,7 +211,7 @@ impl std::fmt::Debug for ClothState {
         f.debug_struct("ClothState")
             .field("grid", self.sim.grid())
             .field("yaw", &self.yaw)
-            .field("wind_speed", &self.wind_speed)
+            .field("wind_steps_per_frame", &self.wind_steps_per_frame)
             .finish_non_exhaustive()
     }
 }
@@ -250,7 +246,7 @@ impl Described for Cloth {
             }
         };
         if let Some(meshes) = meshes {
-            let fresh = cloth_mesh(self.grid.rows, self.grid.columns, sim.positions());
+            let fresh = mesh::build(self.grid.rows, self.grid.columns, sim.positions());
             match mesh.filter(|m| meshes.contains(&m.0)) {
                 Some(m) => {
                     if let Some(mut slot) = meshes.get_mut(&m.0) {
@@ -263,7 +259,7 @@ impl Described for Cloth {
             }
         }
         e.insert(ClothState {
-            wind_speed: self.params.wind_speed,
+            wind_steps_per_frame: self.params.wind_steps_per_frame,
             sim,
             yaw: 0.0,
             detail: Detail::default(),
@@ -275,19 +271,5 @@ impl Described for Cloth {
 /// Limits and constants of [`ClothLod`].
 impl ClothLod {
     /// Seconds over which a cloth cross-fades from one grid coarseness to another.
-    pub const FADE_SECONDS: f32 = CLOTH_LOD_FADE;
-}
-
-/// The cloth's mesh, for those who draw a [`ClothSim`] or a particle cloth themselves.
-impl Cloth {
-    /// A two-sided mesh of a `rows` × `columns` grid of `positions` (row-major), with UVs
-    /// and normals.
-    pub fn mesh(rows: usize, columns: usize, positions: &[Vec3]) -> Mesh {
-        cloth_mesh(rows, columns, positions)
-    }
-
-    /// Rewrites the positions and normals of a mesh made by [`Self::mesh`] in place.
-    pub fn write_mesh(mesh: &mut Mesh, rows: usize, columns: usize, positions: &[Vec3]) {
-        write_cloth_mesh(mesh, rows, columns, positions)
-    }
+    pub const FADE_SECONDS: f32 = 0.5;
 }

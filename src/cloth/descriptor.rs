@@ -5,6 +5,9 @@
 //! descriptor is `ω(j) = exp(iθ(j))` (eq. 4); its DFT `S(k)` (eq. 5) can be filtered and
 //! transformed back (eq. 6). After filtering, `ω(j)` is no longer of unit length: we keep its
 //! direction, so every segment keeps length δ and the yarn its length `n δ`.
+//!
+//! The yarn's geometry is here for those who build yarns by hand: [`yarn_from_angles`],
+//! [`total_curvature`] and its inverse [`bend_angles`], [`trace_yarn`].
 
 use std::sync::Arc;
 
@@ -14,7 +17,7 @@ use rustfft::{Fft, FftPlanner, num_complex::Complex};
 /// Points of a yarn whose segment `j` points in direction `angles[j]` (θ(j), radians from +X):
 /// `n` angles give `n + 1` points, the first at the origin, each segment `segment` long.
 /// A non-finite angle is read as 0.
-pub(crate) fn yarn_from_angles(angles: &[f32], segment: f32) -> Vec<Vec2> {
+pub fn yarn_from_angles(angles: &[f32], segment: f32) -> Vec<Vec2> {
     let mut points = Vec::with_capacity(angles.len() + 1);
     let mut p = Vec2::ZERO;
     points.push(p);
@@ -27,7 +30,7 @@ pub(crate) fn yarn_from_angles(angles: &[f32], segment: f32) -> Vec<Vec2> {
 }
 
 /// Total curvature θ(j) = θ(j−1) + α(j), θ(0) = α(0) (eq. 3), from the bend angles α.
-pub(crate) fn total_curvature(bends: &[f32]) -> Vec<f32> {
+pub fn total_curvature(bends: &[f32]) -> Vec<f32> {
     bends
         .iter()
         .scan(0.0, |theta, &alpha| {
@@ -38,7 +41,7 @@ pub(crate) fn total_curvature(bends: &[f32]) -> Vec<f32> {
 }
 
 /// Bend angles α(j) = θ(j) − θ(j−1), α(0) = θ(0): the inverse of [`total_curvature`].
-pub(crate) fn bend_angles(total: &[f32]) -> Vec<f32> {
+pub fn bend_angles(total: &[f32]) -> Vec<f32> {
     let mut previous = 0.0;
     total
         .iter()
@@ -155,38 +158,12 @@ impl DescriptorFilter {
 }
 
 /// Places a yarn from `start` along unit `directions`, each segment `segment` long.
-pub(crate) fn trace_yarn(start: Vec2, directions: &[Vec2], segment: f32, points: &mut [Vec2]) {
+pub fn trace_yarn(start: Vec2, directions: &[Vec2], segment: f32, points: &mut [Vec2]) {
     let mut p = start;
     points[0] = p;
     for (point, &d) in points[1..].iter_mut().zip(directions) {
         p += d * segment;
         *point = p;
-    }
-}
-
-/// The descriptor's geometry (§3 of the cloth paper), for those who build yarns by hand.
-impl DescriptorFilter {
-    /// A yarn's points from its tangent angles θ_k (eq. 3's polyline), `segment` m apart,
-    /// starting at the origin.
-    pub fn yarn_from_angles(angles: &[f32], segment: f32) -> Vec<Vec2> {
-        yarn_from_angles(angles, segment)
-    }
-
-    /// The cumulative angles θ_k = Σ α_j of the bend angles α (eq. 2).
-    pub fn total_curvature(bends: &[f32]) -> Vec<f32> {
-        total_curvature(bends)
-    }
-
-    /// The bend angles α_k = θ_k − θ_{k−1} of the cumulative angles θ (the inverse of
-    /// [`Self::total_curvature`]).
-    pub fn bend_angles(total: &[f32]) -> Vec<f32> {
-        bend_angles(total)
-    }
-
-    /// Traces a yarn from `start` along the unit `directions`, `segment` m apart, into
-    /// `points` (one more than the directions).
-    pub fn trace_yarn(start: Vec2, directions: &[Vec2], segment: f32, points: &mut [Vec2]) {
-        trace_yarn(start, directions, segment, points)
     }
 }
 

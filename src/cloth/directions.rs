@@ -38,7 +38,7 @@ pub const CELLS_PER_YARN: usize = 32;
 /// A wave longer than two yarns does not bend the yarn it passes: it turns the whole yarn about
 /// the pole, one way and then the other, and a flag swung so is a board, not cloth. Real flags
 /// carry waves of about 1.9 lengths and are held toward the wind by its drag. Table 1's bands
-/// that start at 1 (the flapping non-frozen banner, the fluttering non-frozen curtain) put most
+/// that start at 1 (the flapping evolving banner, the fluttering evolving curtain) put most
 /// of a 1/f^β spectrum's energy in those tilts: the banner's free edge swung by 0.31–0.42 L,
 /// where every other row swings by at most 0.25 L. Weighted so, the band keeps its harmonics
 /// (a wave of 5 yarns keeps 16 % of its amplitude, one of 2.5 yarns 64 %) and step 2 rescales

@@ -1,4 +1,5 @@
-//! The double-sided triangle mesh of a cloth, written in place each frame.
+//! The double-sided triangle mesh of a cloth's node grid ([`build`]), rewritten in place each
+//! frame ([`write`]): a [`ClothSim`](super::ClothSim)'s, a particle cloth's or your own.
 
 use bevy::asset::RenderAssetUsages;
 use bevy::math::Vec3;
@@ -7,7 +8,7 @@ use bevy::mesh::{Indices, Mesh, PrimitiveTopology, VertexAttributeValues};
 /// A double-sided mesh of a `rows × columns` node grid: the front side's vertices, then the
 /// back side's with flipped normals and reversed winding. UVs run along the yarns (u) and down
 /// the cloth (v). Kept in main-world memory so it can be rewritten every frame.
-pub(crate) fn cloth_mesh(rows: usize, columns: usize, positions: &[Vec3]) -> Mesh {
+pub fn build(rows: usize, columns: usize, positions: &[Vec3]) -> Mesh {
     let count = rows * columns;
     let mut uvs = Vec::with_capacity(2 * count);
     for _side in 0..2 {
@@ -42,14 +43,14 @@ pub(crate) fn cloth_mesh(rows: usize, columns: usize, positions: &[Vec3]) -> Mes
     .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, vec![[0.0f32, 0.0, 1.0]; 2 * count])
     .with_inserted_attribute(Mesh::ATTRIBUTE_UV_0, uvs)
     .with_inserted_indices(Indices::U32(indices));
-    write_cloth_mesh(&mut mesh, rows, columns, positions);
+    write(&mut mesh, rows, columns, positions);
     mesh
 }
 
-/// Rewrites the positions and normals of a mesh made by [`cloth_mesh`] in place. Front normals
+/// Rewrites the positions and normals of a mesh made by [`build`] in place. Front normals
 /// are along-yarn tangent × upward tangent by central differences (one-sided at the edges), +Z
 /// where the grid is degenerate.
-pub(crate) fn write_cloth_mesh(mesh: &mut Mesh, rows: usize, columns: usize, positions: &[Vec3]) {
+pub fn write(mesh: &mut Mesh, rows: usize, columns: usize, positions: &[Vec3]) {
     let count = rows * columns;
     if let Some(VertexAttributeValues::Float32x3(out)) =
         mesh.attribute_mut(Mesh::ATTRIBUTE_POSITION)

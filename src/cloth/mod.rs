@@ -3,9 +3,9 @@
 //!
 //! | step | what | source |
 //! |---|---|---|
-//! | noise | 2-D (frozen) or 3-D (non-frozen) 1/f^β matrix, band-limited along its lines, scaled to [−θ, θ] | §3.1, §4 |
+//! | noise | 2-D (frozen) or 3-D (evolving: the paper's non-frozen) 1/f^β matrix, band-limited along its lines, scaled to [−θ, θ] | §3.1, §4 |
 //! | descriptor | per noise line: ω(j) = exp(iθ(j)), DFT, mean and band, inverse, mean along the stream | eq. 2–6 |
-//! | shift | the lines move |v| cells along and |u| across the yarns per frame; non-frozen: one slice per frame | §4.1–4.2 |
+//! | shift | the lines move |v| cells along and |u| across the yarns per frame; evolving: one slice per frame | §4.1–4.2 |
 //! | yarns | equal segments along the directions, held at the pole, scaled by the wind: length kept | eq. 2 |
 //! | pole edge | arcs of the fixed edge, W1 and W2, both ends on the pole | eq. 8 |
 //! | constraint | neighbouring yarns at most L apart, from the leading yarn | eq. 7 |
@@ -17,13 +17,12 @@
 
 mod component;
 mod constraints;
-mod descriptor;
+pub mod descriptor;
 mod directions;
 #[cfg(feature = "gizmos")]
 mod gizmos;
 mod measure;
-mod mesh;
-pub(crate) use mesh::{cloth_mesh, write_cloth_mesh};
+pub mod mesh;
 mod noise;
 mod params;
 mod plugin;
@@ -41,5 +40,5 @@ pub use measure::{FlapRecorder, FlapStats};
 pub use component::{Cloth, ClothInvalid, ClothLod, ClothState};
 pub use params::{ClothError, ClothGrid, ClothParams, ClothWindModel, LeadingYarn};
 pub use plugin::ClothPlugin;
-pub use presets::ClothPreset;
+pub use presets::{ClothKind, ClothPreset};
 pub use sim::{ClothAttachment, ClothSim};

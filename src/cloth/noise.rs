@@ -6,7 +6,7 @@ use crate::spectrum::{GridShape, try_fbm};
 use super::params::ClothError;
 
 /// 1/f^β noise scaled into [−1, 1]: rows × columns for frozen wind (a 2-D matrix, §4.1), or
-/// frames × rows × columns for non-frozen wind (a 3-D matrix, §4.2). Read between nodes by
+/// frames × rows × columns for evolving wind (a 3-D matrix, §4.2). Read between nodes by
 /// periodic linear interpolation, so shifts need not be whole steps.
 #[derive(Clone, Debug)]
 pub(crate) struct NoiseSheet {

@@ -91,7 +91,7 @@ pub enum ClothWindModel {
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
 pub struct ClothParams {
     /// 1. Wind speed |v|: steps the noise travels along the yarns per frame.
-    pub wind_speed: f32,
+    pub wind_steps_per_frame: f32,
     /// 2. Vibration amplitude θ: the angles span [−θ, θ], radians, ≤ π.
     pub amplitude: f32,
     /// 3. Smoothness β of the noise (with θ): larger is smoother.
@@ -104,7 +104,7 @@ pub struct ClothParams {
     pub leading: LeadingYarn,
     /// Harmonics of the descriptor kept (Table 1's BPF ranges).
     pub filter: HarmonicFilter,
-    /// Frozen or non-frozen wind.
+    /// Frozen or evolving wind.
     pub model: ClothWindModel,
     /// W1 of eq. 8: how far the pole edge bows downwind at its middle, as a fraction of the
     /// edge's length (grows with the wind, see [`ClothSim::rebuild`](super::sim::ClothSim::rebuild)).
@@ -167,11 +167,6 @@ fn finite(
     }
 }
 
-/// Most nodes a cloth may have (1024 × 1024).
-pub(crate) const MAX_CLOTH_NODES: usize = 1 << 20;
-/// Largest width or height of a cloth, m: every node position stays far inside f32's range.
-pub(crate) const MAX_CLOTH_SIZE: f32 = 1.0e4;
-
 impl ClothGrid {
     /// Checks the grid.
     pub fn validate(&self) -> Result<(), ClothError> {
@@ -190,7 +185,7 @@ impl ClothGrid {
             });
         }
         let nodes = self.rows.saturating_mul(self.columns);
-        if nodes > MAX_CLOTH_NODES {
+        if nodes > ClothGrid::MAX_NODES {
             return Err(ClothError::Count {
                 field: "grid",
                 value: nodes,
@@ -200,13 +195,13 @@ impl ClothGrid {
         finite(
             "grid.width",
             self.width,
-            self.width > 0.0 && self.width <= MAX_CLOTH_SIZE,
+            self.width > 0.0 && self.width <= ClothGrid::MAX_SIZE,
             "must be > 0 and ≤ 1e4 m",
         )?;
         finite(
             "grid.height",
             self.height,
-            self.height >= 0.0 && self.height <= MAX_CLOTH_SIZE,
+            self.height >= 0.0 && self.height <= ClothGrid::MAX_SIZE,
             "must be ≥ 0 and ≤ 1e4 m",
         )
     }
@@ -216,7 +211,12 @@ impl ClothParams {
     /// Checks the parameters.
     pub fn validate(&self) -> Result<(), ClothError> {
         let reason = "must be finite";
-        finite("params.wind_speed", self.wind_speed, true, reason)?;
+        finite(
+            "params.wind_steps_per_frame",
+            self.wind_steps_per_frame,
+            true,
+            reason,
+        )?;
         finite(
             "params.amplitude",
             self.amplitude,
@@ -280,8 +280,8 @@ impl ClothParams {
 /// Limits and constants of [`ClothGrid`].
 impl ClothGrid {
     /// Most nodes a cloth may have (1024 × 1024).
-    pub const MAX_NODES: usize = MAX_CLOTH_NODES;
+    pub const MAX_NODES: usize = 1 << 20;
 
     /// Largest width or height of a cloth, m: every node position stays far inside f32's range.
-    pub const MAX_SIZE: f32 = MAX_CLOTH_SIZE;
+    pub const MAX_SIZE: f32 = 1.0e4;
 }

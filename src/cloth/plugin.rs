@@ -10,9 +10,9 @@ use bevy::time::{Fixed, Time};
 use bevy::transform::components::GlobalTransform;
 
 use super::component::{Cloth, ClothInvalid, ClothLod, ClothState, Detail};
-use super::mesh::write_cloth_mesh;
+use super::mesh;
 use super::params::ClothError;
-use super::sim::ClothAttachment;
+use super::sim::{ClothAttachment, ClothSim};
 use crate::lifecycle::set_up_changed;
 use crate::lod::{LodFocus, LodTiers};
 use crate::schedule::WindfallSystems;
@@ -59,12 +59,8 @@ impl Plugin for ClothPlugin {
     }
 }
 
-/// The shift |v| (noise cells per paper frame) for wind of `speed` m/s on a cloth whose yarns are
-/// `length` m long: the waves run at the wind's speed ([`ClothSim::speed_of_steps`](super::sim::ClothSim::speed_of_steps)); capped
-/// at 50 cells per frame.
-pub(crate) fn wind_steps_per_frame(speed: f32, length: f32) -> f32 {
-    super::sim::steps_for_speed(speed, length).clamp(0.0, 50.0)
-}
+/// The fastest shift the wind gives a cloth, noise steps per paper frame.
+const MAX_STEPS_PER_FRAME: f32 = 50.0;
 
 /// Seconds over which a cloth turns to a new wind direction.
 const TURN_TIME: f32 = 0.6;
@@ -83,7 +79,7 @@ fn step_cloths(
 ) {
     let dt = time.delta_secs();
     for (entity, cloth, mut state, transform, invalid) in &mut cloths {
-        let mut speed = cloth.params.wind_speed;
+        let mut speed = cloth.params.wind_steps_per_frame;
         let wind = wind.as_deref().filter(|_| cloth.follow_wind);
         let placed = match wind {
             Some(_) => crate::guard::check_affine(&transform.affine()).map_err(ClothError::from),
@@ -96,13 +92,14 @@ fn step_cloths(
             placed,
             invalid,
             "Cloth",
-            "it flaps at its own wind_speed",
+            "it flaps at its own wind_steps_per_frame",
         );
         if let Some(wind) = wind.filter(|_| !bad) {
             let v = wind.velocity(transform.translation());
             let local = transform.affine().inverse().transform_vector3(v);
             let horizontal = Vec3::new(local.x, 0.0, local.z);
-            speed = wind_steps_per_frame(horizontal.length(), cloth.grid.width);
+            speed = ClothSim::steps_for_speed(horizontal.length(), cloth.grid.width)
+                .clamp(0.0, MAX_STEPS_PER_FRAME);
             if cloth.attachment == ClothAttachment::Pole && horizontal.length() > 1e-3 {
                 let target = (-horizontal.z).atan2(horizontal.x);
                 let turn = (target - state.yaw + std::f32::consts::PI)
@@ -111,7 +108,7 @@ fn step_cloths(
                 state.yaw += turn * (1.0 - (-dt / TURN_TIME).exp());
             }
         }
-        state.wind_speed = speed;
+        state.wind_steps_per_frame = speed;
         state.sim.advance(dt, speed);
     }
 }
@@ -165,6 +162,6 @@ fn write_cloth_meshes(
         let turn = Quat::from_rotation_y(state.yaw);
         rotated.clear();
         rotated.extend(state.sim.positions().iter().map(|&p| turn * p));
-        write_cloth_mesh(&mut mesh, cloth.grid.rows, cloth.grid.columns, &rotated);
+        mesh::write(&mut mesh, cloth.grid.rows, cloth.grid.columns, &rotated);
     }
 }

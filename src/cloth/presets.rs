@@ -7,19 +7,21 @@
 
 use std::f32::consts::FRAC_PI_2;
 
+use bevy::reflect::Reflect;
+
 use super::component::Cloth;
 use super::descriptor::HarmonicFilter;
 use super::params::{ClothParams, ClothWindModel, LeadingYarn};
 use super::sim::ClothAttachment;
 
-/// θ, β, |v|, |u|, BPF range, non-frozen, and what the paper observed.
+/// θ, β, |v|, |u|, BPF range, evolving (the paper's "non-frozen"), and what the paper observed.
 struct TableRow {
     theta: f32,
     beta: f32,
     v: f32,
     u: f32,
     band: Option<(usize, usize)>,
-    non_frozen: bool,
+    evolving: bool,
     observation: &'static str,
 }
 
@@ -43,6 +45,29 @@ pub enum ClothPreset {
     FlagUncurlingEvolving,
 }
 
+/// The three kinds of cloth of Table 1: a banner and a flag hang from a pole, a curtain from a
+/// rod.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Reflect)]
+pub enum ClothKind {
+    /// A banner: a long cloth on a pole (the paper's banners bulge most, eq. 8).
+    Banner,
+    /// A curtain hanging from a rod.
+    Curtain,
+    /// A flag on a pole.
+    Flag,
+}
+
+impl ClothKind {
+    /// "banner", "curtain" or "flag".
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Banner => "banner",
+            Self::Curtain => "curtain",
+            Self::Flag => "flag",
+        }
+    }
+}
+
 impl ClothPreset {
     /// Every preset, in Table 1's order.
     pub const ALL: [Self; 12] = [
@@ -63,13 +88,13 @@ impl ClothPreset {
     /// Table 1's row.
     fn row(self) -> TableRow {
         use ClothPreset::*;
-        let row = |theta, beta, v, u, band, non_frozen, observation| TableRow {
+        let row = |theta, beta, v, u, band, evolving, observation| TableRow {
             theta,
             beta,
             v,
             u,
             band,
-            non_frozen,
+            evolving,
             observation,
         };
         #[rustfmt::skip]
@@ -90,29 +115,23 @@ impl ClothPreset {
         table
     }
 
-    /// "banner", "curtain" or "flag".
-    pub fn kind(self) -> &'static str {
+    /// What this row's cloth is: a banner, a curtain or a flag.
+    pub fn kind(self) -> ClothKind {
         use ClothPreset::*;
         match self {
             BannerFlutteringFrozen
             | BannerFlutteringEvolving
             | BannerFlappingFrozen
-            | BannerFlappingEvolving => "banner",
+            | BannerFlappingEvolving => ClothKind::Banner,
             CurtainDriftingFrozen
             | CurtainDriftingEvolving
             | CurtainFlutteringFrozen
-            | CurtainFlutteringEvolving => "curtain",
+            | CurtainFlutteringEvolving => ClothKind::Curtain,
             FlagFlappingFrozen
             | FlagFlappingEvolving
             | FlagUncurlingFrozen
-            | FlagUncurlingEvolving => "flag",
+            | FlagUncurlingEvolving => ClothKind::Flag,
         }
-    }
-
-    /// "banner", "curtain" or "flag".
-    #[deprecated(since = "0.2.0", note = "renamed to `kind`")]
-    pub fn object(self) -> &'static str {
-        self.kind()
     }
 
     /// A [`Cloth`] of this row, ready to spawn: its parameters, on a pole (banners, flags) or a
@@ -120,7 +139,7 @@ impl ClothPreset {
     pub fn cloth(self) -> Cloth {
         Cloth {
             params: self.params(),
-            attachment: if self.kind() == "curtain" {
+            attachment: if self.kind() == ClothKind::Curtain {
                 ClothAttachment::Rod
             } else {
                 ClothAttachment::Pole
@@ -151,13 +170,7 @@ impl ClothPreset {
 
     /// Whether this row uses evolving (the paper's non-frozen) wind.
     pub fn evolving(self) -> bool {
-        self.row().non_frozen
-    }
-
-    /// Whether this row uses evolving (the paper's non-frozen) wind.
-    #[deprecated(since = "0.2.0", note = "renamed to `evolving`")]
-    pub fn non_frozen(self) -> bool {
-        self.evolving()
+        self.row().evolving
     }
 
     /// What the paper observed for this row.
@@ -170,21 +183,21 @@ impl ClothPreset {
         let TableRow {
             theta: amplitude,
             beta,
-            v: wind_speed,
+            v: wind_steps_per_frame,
             u: swirl,
             band,
-            non_frozen,
+            evolving,
             ..
         } = self.row();
         // Eq. 8's W1 and W2 (the paper gives no values): a banner's long edge bulges more than a
         // flag's; a curtain hangs from a rigid rod.
         let (bow, lean) = match self.kind() {
-            "banner" => (0.08, 0.04),
-            "flag" => (0.05, 0.03),
-            _ => (0.0, 0.0),
+            ClothKind::Banner => (0.08, 0.04),
+            ClothKind::Flag => (0.05, 0.03),
+            ClothKind::Curtain => (0.0, 0.0),
         };
         ClothParams {
-            wind_speed,
+            wind_steps_per_frame,
             amplitude,
             beta,
             swirl,
@@ -194,7 +207,7 @@ impl ClothPreset {
                 Some((min, max)) => HarmonicFilter::BandPass { min, max },
                 None => HarmonicFilter::All,
             },
-            model: if non_frozen {
+            model: if evolving {
                 ClothWindModel::Evolving { frames: 64 }
             } else {
                 ClothWindModel::Frozen
@@ -206,48 +219,6 @@ impl ClothPreset {
             seed: 1,
         }
     }
-}
-
-/// The names of the first release (the paper's wind band and "non-frozen"), kept for one
-/// release.
-#[allow(non_upper_case_globals)]
-impl ClothPreset {
-    /// Renamed to [`ClothPreset::BannerFlutteringFrozen`].
-    #[deprecated(since = "0.2.0", note = "renamed to `BannerFlutteringFrozen`")]
-    pub const BannerLightFrozen: Self = Self::BannerFlutteringFrozen;
-    /// Renamed to [`ClothPreset::BannerFlutteringEvolving`].
-    #[deprecated(since = "0.2.0", note = "renamed to `BannerFlutteringEvolving`")]
-    pub const BannerLightNonFrozen: Self = Self::BannerFlutteringEvolving;
-    /// Renamed to [`ClothPreset::BannerFlappingFrozen`].
-    #[deprecated(since = "0.2.0", note = "renamed to `BannerFlappingFrozen`")]
-    pub const BannerGentleFrozen: Self = Self::BannerFlappingFrozen;
-    /// Renamed to [`ClothPreset::BannerFlappingEvolving`].
-    #[deprecated(since = "0.2.0", note = "renamed to `BannerFlappingEvolving`")]
-    pub const BannerGentleNonFrozen: Self = Self::BannerFlappingEvolving;
-    /// Renamed to [`ClothPreset::CurtainDriftingFrozen`].
-    #[deprecated(since = "0.2.0", note = "renamed to `CurtainDriftingFrozen`")]
-    pub const CurtainGentleFrozen: Self = Self::CurtainDriftingFrozen;
-    /// Renamed to [`ClothPreset::CurtainDriftingEvolving`].
-    #[deprecated(since = "0.2.0", note = "renamed to `CurtainDriftingEvolving`")]
-    pub const CurtainGentleNonFrozen: Self = Self::CurtainDriftingEvolving;
-    /// Renamed to [`ClothPreset::CurtainFlutteringFrozen`].
-    #[deprecated(since = "0.2.0", note = "renamed to `CurtainFlutteringFrozen`")]
-    pub const CurtainModerateFrozen: Self = Self::CurtainFlutteringFrozen;
-    /// Renamed to [`ClothPreset::CurtainFlutteringEvolving`].
-    #[deprecated(since = "0.2.0", note = "renamed to `CurtainFlutteringEvolving`")]
-    pub const CurtainModerateNonFrozen: Self = Self::CurtainFlutteringEvolving;
-    /// Renamed to [`ClothPreset::FlagFlappingFrozen`].
-    #[deprecated(since = "0.2.0", note = "renamed to `FlagFlappingFrozen`")]
-    pub const FlagGentleFrozen: Self = Self::FlagFlappingFrozen;
-    /// Renamed to [`ClothPreset::FlagFlappingEvolving`].
-    #[deprecated(since = "0.2.0", note = "renamed to `FlagFlappingEvolving`")]
-    pub const FlagGentleNonFrozen: Self = Self::FlagFlappingEvolving;
-    /// Renamed to [`ClothPreset::FlagUncurlingFrozen`].
-    #[deprecated(since = "0.2.0", note = "renamed to `FlagUncurlingFrozen`")]
-    pub const FlagModerateFrozen: Self = Self::FlagUncurlingFrozen;
-    /// Renamed to [`ClothPreset::FlagUncurlingEvolving`].
-    #[deprecated(since = "0.2.0", note = "renamed to `FlagUncurlingEvolving`")]
-    pub const FlagModerateNonFrozen: Self = Self::FlagUncurlingEvolving;
 }
 
 impl Default for ClothParams {

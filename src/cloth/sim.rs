@@ -15,12 +15,6 @@ use super::directions::{CELLS_PER_YARN, ColumnTap, DirectionSheet, LINE_YARNS};
 use super::noise::NoiseSheet;
 use super::params::{ClothError, ClothGrid, ClothParams, ClothWindModel};
 
-/// The paper's frame rate: Table 1's shifts are steps per frame at 50 fps.
-pub(crate) const PAPER_FPS: f32 = 50.0;
-
-/// Most noise cells a cloth may have (frames × max(rows, 16) × 160): 4 M cells, 48 MiB.
-pub(crate) const MAX_NOISE_CELLS: usize = 1 << 22;
-
 /// How the yarns sit in the cloth's local frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bevy::reflect::Reflect)]
 pub enum ClothAttachment {
@@ -31,21 +25,6 @@ pub enum ClothAttachment {
     /// Curtain: the fixed edge runs along local +X from the origin, yarns hang down −Y and
     /// billow along +Z (turn +Z downwind).
     Rod,
-}
-
-/// The wind speed (m/s) at which noise moving `steps` cells per paper frame along a yarn of
-/// `length` m runs at the wind's own speed: waves on flags travel at about the speed of the flow
-/// (Alben's simulations of light flags; Raynaud & Mulleners 2026 in a wind tunnel). For a 1.5 m
-/// flag this is Table 1's pairing: |v| = 2 in a gentle breeze (4.7 m/s), 4 in a moderate one.
-pub(crate) fn air_speed(steps: f32, length: f32) -> f32 {
-    steps * PAPER_FPS * length / CELLS_PER_YARN as f32
-}
-
-/// Inverse of [`air_speed`]: the shift |v| (cells per paper frame) of noise that moves at
-/// `speed` m/s along a yarn of `length` m.
-pub(crate) fn steps_for_speed(speed: f32, length: f32) -> f32 {
-    let steps = speed * CELLS_PER_YARN as f32 / (PAPER_FPS * length.max(1e-6));
-    if steps.is_finite() { steps } else { 0.0 }
 }
 
 /// What the wind's strength does to the shape, from the air speed U (m/s) and the speed the
@@ -84,7 +63,7 @@ pub struct ClothSim {
     attachment: ClothAttachment,
     sheet: DirectionSheet,
     /// Noise cells the pattern has moved along / across the yarns, and the time for the
-    /// non-frozen slices.
+    /// evolving slices.
     along: f64,
     across: f64,
     time: f64,
@@ -137,7 +116,7 @@ impl ClothSim {
         let cells = frames
             .saturating_mul(noise_rows)
             .saturating_mul(LINE_YARNS * CELLS_PER_YARN);
-        if cells > MAX_NOISE_CELLS {
+        if cells > ClothSim::MAX_NOISE_CELLS {
             let (field, value) = if frames > 1 {
                 ("params.model.frames", frames)
             } else {
@@ -166,7 +145,7 @@ impl ClothSim {
             across: 0.0,
             time: 0.0,
             last_step: [0.0; 3],
-            speed: params.wind_speed,
+            speed: params.wind_steps_per_frame,
             positions: vec![Vec3::ZERO; grid.rows * grid.columns],
             directions: vec![Vec2::X; segments],
             droop: vec![Vec2::X; segments],
@@ -216,25 +195,26 @@ impl ClothSim {
 
     /// The air speed the cloth flaps in now, m/s (from the last step's |v|, [`Self::speed_of_steps`]).
     pub fn air_speed(&self) -> f32 {
-        air_speed(self.speed, self.grid.width)
+        Self::speed_of_steps(self.speed, self.grid.width)
     }
 
-    /// Advances the noise by `dt` seconds at `wind_speed` cells per paper frame (|v|) and the
-    /// parameters' swirl (|u|). Frozen wind only shifts (§4.1); non-frozen wind also moves on one
+    /// Advances the noise by `dt` seconds at `wind_steps_per_frame` (|v|, noise steps per paper
+    /// frame) and the
+    /// parameters' swirl (|u|). Frozen wind only shifts (§4.1); evolving wind (the paper's non-frozen) also moves on one
     /// time slice per paper frame (§4.2: slice f is the first slice shifted f |v| cells, so the
     /// pattern both travels and changes). Non-finite input is ignored.
-    pub fn advance(&mut self, dt: f32, wind_speed: f32) {
+    pub fn advance(&mut self, dt: f32, wind_steps_per_frame: f32) {
         let dt = f64::from(dt);
-        let steps = f64::from(wind_speed) * f64::from(PAPER_FPS) * dt;
-        let swirl = f64::from(self.params.swirl) * f64::from(PAPER_FPS) * dt;
+        let steps = f64::from(wind_steps_per_frame) * f64::from(ClothSim::PAPER_FPS) * dt;
+        let swirl = f64::from(self.params.swirl) * f64::from(ClothSim::PAPER_FPS) * dt;
         if steps.is_finite() && swirl.is_finite() && dt.is_finite() && dt >= 0.0 {
             // Keep the offsets within one period of the noise so f64 precision never runs out.
             let (frames, rows, columns) = self.sheet.size();
             self.along = (self.along + steps).rem_euclid(columns as f64);
             self.across = (self.across + swirl).rem_euclid(rows as f64);
-            self.time = (self.time + dt).rem_euclid(frames as f64 / f64::from(PAPER_FPS));
+            self.time = (self.time + dt).rem_euclid(frames as f64 / f64::from(ClothSim::PAPER_FPS));
             self.last_step = [steps, swirl, dt];
-            self.speed = wind_speed;
+            self.speed = wind_steps_per_frame;
         }
     }
 
@@ -293,7 +273,7 @@ impl ClothSim {
         let strength = Strength::new(self.air_speed(), self.params.reference_speed);
         let frame = match self.params.model {
             ClothWindModel::Frozen => 0.0,
-            ClothWindModel::Evolving { .. } => time * f64::from(PAPER_FPS),
+            ClothWindModel::Evolving { .. } => time * f64::from(ClothSim::PAPER_FPS),
         };
         let step = CELLS_PER_YARN as f64 / segments as f64;
         // A coarse segment reads the noise at its middle.
@@ -398,23 +378,29 @@ impl ClothSim {
 /// Limits and constants of [`ClothSim`].
 impl ClothSim {
     /// Most noise cells a cloth may have (frames × max(rows, 16) × 160): 4 M cells, 48 MiB.
-    pub const MAX_NOISE_CELLS: usize = MAX_NOISE_CELLS;
+    pub const MAX_NOISE_CELLS: usize = 1 << 22;
 
     /// The paper's frame rate: Table 1's shifts are steps per frame at 50 fps.
-    pub const PAPER_FPS: f32 = PAPER_FPS;
+    pub const PAPER_FPS: f32 = 50.0;
 }
 
-/// The conversions between the paper's noise shift and the wind's speed.
+/// The one conversion between the paper's noise shift (steps per paper frame, as
+/// [`ClothParams::wind_steps_per_frame`]) and the wind's speed (m/s).
 impl ClothSim {
-    /// The air speed, m/s, of noise shifting `steps` cells per paper frame along yarns `length`
-    /// m long (the inverse of [`Self::steps_for_speed`]).
+    /// The wind speed, m/s, at which noise shifting `steps` cells per paper frame along yarns
+    /// `length` m long runs at the wind's own speed: waves on flags travel at about the speed of
+    /// the flow (Alben's simulations of light flags; Raynaud & Mulleners 2026 in a wind tunnel).
+    /// For a 1.5 m flag this is Table 1's pairing: |v| = 2 in a gentle breeze (4.7 m/s), 4 in a
+    /// moderate one. The inverse of [`Self::steps_for_speed`].
     pub fn speed_of_steps(steps: f32, length: f32) -> f32 {
-        air_speed(steps, length)
+        steps * Self::PAPER_FPS * length / CELLS_PER_YARN as f32
     }
 
     /// The shift |v|, cells per paper frame, of noise that moves at `speed` m/s along yarns
-    /// `length` m long: the cloth's waves then run at the wind's speed.
+    /// `length` m long: the cloth's waves then run at the wind's speed (0 for a degenerate
+    /// length).
     pub fn steps_for_speed(speed: f32, length: f32) -> f32 {
-        steps_for_speed(speed, length)
+        let steps = speed * CELLS_PER_YARN as f32 / (Self::PAPER_FPS * length.max(1e-6));
+        if steps.is_finite() { steps } else { 0.0 }
     }
 }

@@ -15,9 +15,9 @@ use bevy::reflect::Reflect;
 use bevy::transform::TransformSystems;
 use bevy::transform::components::GlobalTransform;
 
+use super::model::regime::PrimitiveMotion;
 use super::object::FallState;
 use super::object::FallingObject;
-use super::regime::PrimitiveMotion;
 
 /// Draws falling objects' trails when the [`FallGizmos`] gizmo group is enabled (off by
 /// default; part of [`WindfallDebugPlugin`](crate::WindfallDebugPlugin)). Costs nothing while

@@ -12,9 +12,9 @@ use bevy::color::Color;
 use bevy::math::{Vec2, Vec3};
 use bevy::mesh::{Indices, Mesh, PrimitiveTopology};
 
+use super::model::body::Shape;
 use super::object::FallingObject;
 use super::presets::FallPreset;
-use super::regime::Shape;
 
 /// Reds, oranges, yellows and browns: the look of a leaf without a preset.
 pub(crate) const AUTUMN: [Color; 5] = [

@@ -23,33 +23,22 @@
 //! | U | m/s |
 //! | Ω | rad/s |
 //!
-//! The math is in plain types ([`Regime::new`], [`TrajectoryDatabase`], [`FallPath`], [`ode`]);
-//! [`FallPlugin`] moves every [`FallingObject`] on the fixed timestep.
+//! The paper's models are plain types in `model/` ([`Regime::new`], [`TrajectoryDatabase`],
+//! [`MarkovChain`], [`FallPath`], [`ode`]); beside them the ECS glue: the components
+//! ([`FallingObject`], [`FallState`]), [`FallPlugin`] that moves every object on the fixed
+//! timestep, [`FallPreset`]s, the default looks, levels of detail ([`FallLod`]) and [`cloud`].
 
 pub mod cloud;
-mod database;
 #[cfg(feature = "gizmos")]
 mod gizmos;
 mod lod;
 mod look;
-mod markov;
 mod model;
-mod motion;
 mod object;
-pub mod ode;
-mod path;
-mod piece;
 mod plugin;
 mod presets;
-mod random;
-mod regime;
-mod release;
-mod series;
-mod tiers;
-mod tilt;
 
 pub use cloud::{CloudRegion, LeafCloud, LeafCloudInvalid, LeafCloudPlugin, LeafCloudState};
-pub use database::{DatabaseConfig, TrajectoryDatabase};
 #[cfg(feature = "gizmos")]
 pub use gizmos::FallGizmos;
 #[cfg(feature = "gizmos")]
@@ -57,23 +46,17 @@ pub(crate) use gizmos::FallGizmosPlugin;
 pub use lod::FallLod;
 #[cfg(feature = "render")]
 pub(crate) use look::{CLOUD_POINTS, mix, outline};
-pub use markov::{MarkovChain, MarkovError};
 pub use model::FallModel;
-pub use motion::FallScales;
-pub use path::{FallPath, StepOutcome, WindTilt};
+pub use model::body::{Fluid, Shape};
+pub use model::database::{DatabaseConfig, TrajectoryDatabase};
+pub use model::error::FallError;
+pub use model::markov::{MarkovChain, MarkovError};
+pub use model::motion::FallScales;
+pub use model::ode;
+pub use model::path::{FallPath, StepOutcome, WindTilt};
+pub use model::regime::{PrimitiveMotion, Regime};
+pub use model::release::FallRelease;
 
 pub use object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
 pub use plugin::FallPlugin;
 pub use presets::FallPreset;
-pub use regime::{FallError, Fluid, PrimitiveMotion, Regime, Shape};
-pub use release::FallRelease;
-
-/// Renamed to [`FallPlugin`] (one prefix per domain), kept for one release.
-#[deprecated(since = "0.2.0", note = "renamed to `FallPlugin`")]
-pub type FreeFallPlugin = FallPlugin;
-/// Renamed to [`FallSettings`], kept for one release.
-#[deprecated(since = "0.2.0", note = "renamed to `FallSettings`")]
-pub type FreeFallSettings = FallSettings;
-/// Renamed to [`FallError`], kept for one release.
-#[deprecated(since = "0.2.0", note = "renamed to `FallError`")]
-pub type FreeFallError = FallError;

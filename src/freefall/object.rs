@@ -10,14 +10,16 @@ use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::Transform;
 
-use super::markov::MarkovChain;
+use super::lod::TierClock;
 use super::model::FallModel;
-use super::motion::{FallScales, STROUHAL};
-use super::path::FallPath;
+use super::model::body::{Fluid, Shape};
+use super::model::error::FallError;
+use super::model::markov::MarkovChain;
+use super::model::motion::FallScales;
+use super::model::path::FallPath;
+use super::model::regime::{PrimitiveMotion, Regime};
+use super::model::release::FallRelease;
 use super::presets::FallPreset;
-use super::regime::{FallError, Fluid, PrimitiveMotion, Regime, Shape, regime};
-use super::release::FallRelease;
-use super::tiers::TierClock;
 use crate::error::InvalidValue;
 use crate::lifecycle::Described;
 
@@ -125,7 +127,7 @@ impl FallingObject {
                 reason: "must be an angle in [−π, π]",
             }));
         }
-        let mut r = regime(&self.shape, self.density, &self.fluid, self.gravity)?;
+        let mut r = Regime::new(&self.shape, self.density, &self.fluid, self.gravity)?;
         if let Some(main) = self.main_motion {
             r.main = main;
         }
@@ -137,7 +139,9 @@ impl FallingObject {
         let (length, chord, thickness) = self.shape.lengths();
         FallScales {
             descent_speed: regime.descent_speed,
-            swing_rate: (std::f32::consts::TAU * STROUHAL * regime.descent_speed / chord).max(1e-6),
+            swing_rate: (std::f32::consts::TAU * FallScales::STROUHAL * regime.descent_speed
+                / chord)
+                .max(1e-6),
             length,
             chord,
             deviation: self.deviation,

@@ -9,11 +9,10 @@ use bevy::math::{Quat, Vec3};
 use bevy::time::{Fixed, Time};
 use bevy::transform::components::Transform;
 
-use super::lod::{FallClock, FallLod};
+use super::lod::{FallClock, FallLod, TierClock};
 use super::model::FallModel;
+use super::model::path::{StepOutcome, WindTilt};
 use super::object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
-use super::path::{StepOutcome, WindTilt};
-use super::tiers::TierClock;
 use crate::lod::LodFocus;
 use crate::schedule::WindfallSystems;
 use crate::wind::WindField;

@@ -20,8 +20,9 @@
 
 use bevy::reflect::Reflect;
 
-use super::markov::MarkovChain;
-use super::regime::{Fluid, PrimitiveMotion, Shape};
+use super::model::body::{Fluid, Shape};
+use super::model::markov::MarkovChain;
+use super::model::regime::PrimitiveMotion;
 
 /// A named object: shape, density, fluid, main motion and Markov chain.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Reflect)]

@@ -244,7 +244,7 @@ fn attach_visuals(
         }
         if count < leaves.len() {
             bevy::log::warn!(
-                "LeafCloud {entity}: drawing {count} of its {} leaves (MAX_DRAWN_LEAVES)",
+                "LeafCloud {entity}: drawing {count} of its {} leaves (LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)",
                 leaves.len()
             );
         }
@@ -338,14 +338,9 @@ fn pack_pose(pose: &LeafPose, data: &mut Vec<u8>) {
     }
 }
 
-/// Most leaves of one cloud that are drawn: the vertex buffer (up to 15 vertices of 56 bytes a
-/// leaf) stays under 256 MiB, wgpu's default largest buffer. Leaves beyond are simulated, not
-/// drawn.
-pub(crate) const MAX_DRAWN_LEAVES: usize = 300_000;
-
 /// How many of `leaves` are drawn.
 fn drawn(leaves: usize) -> usize {
-    leaves.min(MAX_DRAWN_LEAVES)
+    leaves.min(LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)
 }
 
 /// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::gpu::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of
@@ -405,7 +400,7 @@ impl LeafCloudRenderPlugin {
     /// Most leaves of one cloud that are drawn: the vertex buffer (up to 15 vertices of 56 bytes
     /// a leaf) stays under 256 MiB, wgpu's default largest buffer. Leaves beyond are simulated,
     /// not drawn.
-    pub const MAX_DRAWN_LEAVES: usize = MAX_DRAWN_LEAVES;
+    pub const MAX_DRAWN_LEAVES: usize = 300_000;
 }
 
 impl LeafCloudLook {

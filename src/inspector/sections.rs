@@ -91,7 +91,7 @@ pub(super) fn wind(ui: &mut egui::Ui, inspector: &mut WindfallInspector, targets
     ui.add(egui::Slider::new(&mut draft.beta, 0.0..=5.0).text("β (5/3 Kolmogorov)"));
     let mut evolving = matches!(draft.temporal, TemporalMode::Evolving { .. });
     if ui
-        .checkbox(&mut evolving, "non-frozen (evolving)")
+        .checkbox(&mut evolving, "evolving (not frozen)")
         .changed()
     {
         draft.temporal = if evolving {
@@ -281,7 +281,7 @@ pub(super) fn cloth(ui: &mut egui::Ui, inspector: &mut WindfallInspector, target
     ui.checkbox(&mut follow, "|v| follows the wind field");
     ui.add_enabled(
         !follow,
-        egui::Slider::new(&mut p.wind_speed, 0.0..=20.0).text("1 wind speed |v|"),
+        egui::Slider::new(&mut p.wind_steps_per_frame, 0.0..=20.0).text("1 wind speed |v|"),
     );
     ui.add(egui::Slider::new(&mut p.amplitude, 0.0..=PI).text("2 amplitude θ, rad"));
     ui.add(egui::Slider::new(&mut p.beta, 0.0..=5.0).text("3 smoothness β"));
@@ -295,9 +295,9 @@ pub(super) fn cloth(ui: &mut egui::Ui, inspector: &mut WindfallInspector, target
         ui.radio_value(&mut p.leading, LeadingYarn::Center, "centre");
         ui.radio_value(&mut p.leading, LeadingYarn::Bottom, "bottom");
     });
-    let mut non_frozen = matches!(p.model, ClothWindModel::Evolving { .. });
-    if ui.checkbox(&mut non_frozen, "non-frozen").changed() {
-        p.model = if non_frozen {
+    let mut evolving = matches!(p.model, ClothWindModel::Evolving { .. });
+    if ui.checkbox(&mut evolving, "evolving").changed() {
+        p.model = if evolving {
             ClothWindModel::Evolving { frames: 64 }
         } else {
             ClothWindModel::Frozen

@@ -9,7 +9,7 @@ pub enum SpectrumError {
     #[error("`dims` is empty: a field needs at least one axis")]
     NoAxis,
     /// More axes than [`Synthesizer::MAX_AXES`](crate::spectrum::Synthesizer::MAX_AXES).
-    #[error("`dims` has {axes} axes, more than the limit of {MAX_AXES}")]
+    #[error("`dims` has {axes} axes, more than the limit of 4 (`Synthesizer::MAX_AXES`)")]
     TooManyAxes {
         /// How many were given.
         axes: usize,
@@ -26,7 +26,9 @@ pub enum SpectrumError {
     #[error("`beta` = {0}: the spectral exponent must be finite and ≥ 0")]
     Beta(f32),
     /// More nodes than [`Synthesizer::MAX_NODES`](crate::spectrum::Synthesizer::MAX_NODES) (the product saturates at `usize::MAX`).
-    #[error("`dims`: {nodes} nodes in all, more than the limit of {MAX_NODES}")]
+    #[error(
+        "`dims`: {nodes} nodes in all, more than the limit of 67108864 (`Synthesizer::MAX_NODES`)"
+    )]
     TooManyNodes {
         /// The product of `dims`, saturated.
         nodes: usize,
@@ -42,15 +44,3 @@ impl SpectrumError {
         }
     }
 }
-
-/// Most axes a field may have: 4 (space and time). The amplitude table sums the power of
-/// `2^n` alias images per bin, so without a bound a valid node count spread over many short
-/// axes (`[2; 26]`) would take 2^52 steps to tabulate; with it, the table costs at most 16 steps
-/// per node.
-pub(crate) const MAX_AXES: usize = 4;
-
-/// Largest field (product of `dims`) any synthesis may make: 2^26 nodes. It is checked before
-/// anything is allocated; at the limit a field takes 512 MiB of spectrum while it is made and
-/// 256 MiB of output (twice that for a pair). Every grid derived from user input (wind fields,
-/// cloth noise) is bounded by it or by a smaller limit of its own.
-pub(crate) const MAX_NODES: usize = 1 << 26;

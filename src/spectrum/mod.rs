@@ -31,8 +31,6 @@ mod normal;
 pub(crate) use normal::standard_normal;
 mod sample;
 mod synth;
-
-pub(crate) use error::MAX_NODES;
 pub use error::SpectrumError;
 pub use fft::FftBackend;
 pub(crate) use grid::GridShape;

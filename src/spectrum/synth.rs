@@ -5,7 +5,7 @@ use std::sync::{Arc, Mutex};
 use rustfft::num_complex::Complex;
 
 use super::amplitude::AmplitudeTable;
-use super::error::{MAX_AXES, MAX_NODES, SpectrumError};
+use super::error::SpectrumError;
 use super::fft::{FftBackend, InverseFftNd};
 use super::grid::GridShape;
 use super::normal::NormalPairs;
@@ -31,7 +31,7 @@ fn validate(dims: &[usize], beta: f32) -> Result<(), SpectrumError> {
     if dims.is_empty() {
         return Err(SpectrumError::NoAxis);
     }
-    if dims.len() > MAX_AXES {
+    if dims.len() > Synthesizer::MAX_AXES {
         return Err(SpectrumError::TooManyAxes { axes: dims.len() });
     }
     if let Some((axis, &len)) = dims.iter().enumerate().find(|&(_, &n)| n < 2) {
@@ -41,18 +41,11 @@ fn validate(dims: &[usize], beta: f32) -> Result<(), SpectrumError> {
         return Err(SpectrumError::Beta(beta));
     }
     let nodes = dims.iter().fold(1usize, |p, &n| p.saturating_mul(n));
-    if nodes > MAX_NODES {
+    if nodes > Synthesizer::MAX_NODES {
         return Err(SpectrumError::TooManyNodes { nodes });
     }
     Ok(())
 }
-
-/// How many synthesizers [`Synthesizer::shared`] keeps (most recently used first).
-pub(crate) const CACHED_SYNTHESIZERS: usize = 4;
-
-/// Grids above this many nodes (2^22: 256³ is above, 128³ below) are not kept: their tables
-/// (a quarter to an eighth of the grid, 4 bytes a bin) would stay for the process's life.
-pub(crate) const MAX_CACHED_NODES: usize = 1 << 22;
 
 /// The key of a shared synthesizer: dims, β's bits, backend.
 type SharedKey = (Vec<usize>, u32, FftBackend);
@@ -116,7 +109,7 @@ impl Synthesizer {
             return Ok(synth);
         }
         let nodes: usize = dims.iter().product();
-        if nodes > MAX_CACHED_NODES {
+        if nodes > Synthesizer::MAX_CACHED_NODES {
             // Too big to keep for the process's life: built, used, dropped.
             drop(cache);
             return Ok(Arc::new(Self::new(dims, beta, backend)?));
@@ -124,7 +117,7 @@ impl Synthesizer {
         // Built under the lock: two threads asking for the same key build it once.
         let synth = Arc::new(Self::new(dims, beta, backend)?);
         cache.insert(0, (key, Arc::clone(&synth)));
-        cache.truncate(CACHED_SYNTHESIZERS);
+        cache.truncate(Synthesizer::CACHED);
         Ok(synth)
     }
 
@@ -255,23 +248,23 @@ fn normalized(
 /// Limits and constants of [`Synthesizer`].
 impl Synthesizer {
     /// How many synthesizers [`Synthesizer::shared`] keeps (most recently used first).
-    pub const CACHED: usize = CACHED_SYNTHESIZERS;
+    pub const CACHED: usize = 4;
 
     /// Most axes a field may have: 4 (space and time). The amplitude table sums the power of
     /// `2^n` alias images per bin, so without a bound a valid node count spread over many short
     /// axes (`[2; 26]`) would take 2^52 steps to tabulate; with it, the table costs at most 16 steps
     /// per node.
-    pub const MAX_AXES: usize = crate::spectrum::error::MAX_AXES;
+    pub const MAX_AXES: usize = 4;
 
     /// Grids above this many nodes (2^22: 256³ is above, 128³ below) are not kept: their tables
     /// (a quarter to an eighth of the grid, 4 bytes a bin) would stay for the process's life.
-    pub const MAX_CACHED_NODES: usize = MAX_CACHED_NODES;
+    pub const MAX_CACHED_NODES: usize = 1 << 22;
 
     /// Largest field (product of `dims`) any synthesis may make: 2^26 nodes. It is checked before
     /// anything is allocated; at the limit a field takes 512 MiB of spectrum while it is made and
     /// 256 MiB of output (twice that for a pair). Every grid derived from user input (wind fields,
     /// cloth noise) is bounded by it or by a smaller limit of its own.
-    pub const MAX_NODES: usize = crate::spectrum::error::MAX_NODES;
+    pub const MAX_NODES: usize = 1 << 26;
 }
 
 #[cfg(test)]

@@ -6,12 +6,8 @@ use super::pulse::Pulse;
 use crate::spectrum::FftBackend;
 use bevy::reflect::Reflect;
 
-use super::error::{WindError, check};
-
-/// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
-pub(crate) const MAX_REFERENCE_SPEED: f32 = 1.0e4;
-/// Highest accepted `turbulence_intensity`.
-pub(crate) const MAX_TURBULENCE_INTENSITY: f32 = 10.0;
+use super::error::WindError;
+use crate::error::InvalidValue;
 
 /// Where the turbulence lives in space.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -113,10 +109,6 @@ impl Default for WindConfig {
     }
 }
 
-/// Largest grid (including the time axis) a field may have: the spectral synthesis' budget,
-/// [`WindConfig::MAX_NODES`](crate::wind::WindConfig::MAX_NODES) = 2^26 nodes (768 MiB of samples).
-pub(crate) const MAX_NODES: usize = crate::spectrum::MAX_NODES;
-
 /// Mean wind speed at 10 m, m/s, for each Beaufort force 0–12: the middle of the WMO range of
 /// the force (force 0: calm, below 0.3 m/s; force 12: the lower bound of hurricane force,
 /// 32.7 m/s).
@@ -136,11 +128,6 @@ impl WindConfig {
     }
 }
 
-/// Least accepted ln(h_ref/z0): the reference height is at least e^0.1 ≈ 1.105 times the
-/// roughness length. It keeps eq. 10's u* = κU/ln(h/z0) finite and the default turbulence
-/// intensity 1/ln(h/z0) within [`WindConfig::MAX_TURBULENCE_INTENSITY`](crate::wind::WindConfig::MAX_TURBULENCE_INTENSITY).
-pub(crate) const MIN_LOG_RATIO: f32 = 0.1;
-
 fn check_axis(field: &'static str, len: usize) -> Result<(), WindError> {
     if len >= 2 {
         Ok(())
@@ -153,7 +140,7 @@ impl WindConfig {
     /// Checks every field; the first bad one is returned.
     pub fn validate(&self) -> Result<(), WindError> {
         let z0 = self.roughness;
-        check(
+        InvalidValue::check(
             z0.is_finite() && z0 > 0.0,
             "roughness",
             z0,
@@ -162,45 +149,45 @@ impl WindConfig {
         let h = self.reference_height;
         // Checked on what is used, ln(h/z0) (eq. 10's denominator), not on h > z0 alone: one
         // f32 step above z0 would round the logarithm to 0 and every sample to NaN.
-        check(
+        InvalidValue::check(
             h.is_finite()
                 && h > z0
-                && super::profile::ln(h) - super::profile::ln(z0) >= MIN_LOG_RATIO,
+                && super::profile::ln(h) - super::profile::ln(z0) >= WindConfig::MIN_LOG_RATIO,
             "reference_height",
             h,
             "must be finite and at least 1.105 × `roughness` (ln(h/z0) ≥ 0.1)",
         )?;
         let u = self.reference_speed;
-        check(
-            u.is_finite() && u >= 0.0,
+        InvalidValue::check(
+            u.is_finite() && (0.0..=Self::MAX_REFERENCE_SPEED).contains(&u),
             "reference_speed",
             u,
-            "must be finite and ≥ 0",
+            "must be finite, ≥ 0 and ≤ 1e4 m/s",
         )?;
         let d = self.direction;
-        check(
+        InvalidValue::check(
             crate::guard::unit_vec2(d).is_some(),
             "direction",
             d.abs().max_element(),
             "must be finite and non-zero",
         )?;
-        check(
+        InvalidValue::check(
             self.beta.is_finite() && self.beta >= 0.0,
             "beta",
             self.beta,
             "must be finite and ≥ 0",
         )?;
         if let Some(i) = self.turbulence_intensity {
-            check(
-                i.is_finite() && i >= 0.0,
+            InvalidValue::check(
+                i.is_finite() && (0.0..=Self::MAX_TURBULENCE_INTENSITY).contains(&i),
                 "turbulence_intensity",
                 i,
-                "must be finite and ≥ 0",
+                "must be finite, ≥ 0 and ≤ 10",
             )?;
         }
         check_axis("grid.x", self.grid[0])?;
         check_axis("grid.z", self.grid[1])?;
-        check(
+        InvalidValue::check(
             self.cell_size.is_finite() && self.cell_size > 0.0,
             "cell_size",
             self.cell_size,
@@ -213,7 +200,7 @@ impl WindConfig {
         }
         if let TemporalMode::Evolving { samples, period } = self.temporal {
             check_axis("temporal.samples", samples)?;
-            check(
+            InvalidValue::check(
                 period.is_finite() && period > 0.0,
                 "temporal.period",
                 period,
@@ -221,7 +208,7 @@ impl WindConfig {
             )?;
             nodes = nodes.saturating_mul(samples);
         }
-        if nodes > MAX_NODES {
+        if nodes > crate::spectrum::Synthesizer::MAX_NODES {
             return Err(WindError::TooManyNodes {
                 field: "grid",
                 nodes,
@@ -235,7 +222,7 @@ impl WindConfig {
 impl WindConfig {
     /// Largest grid (including the time axis) a field may have: the spectral synthesis' budget,
     /// [`WindConfig::MAX_NODES`](crate::wind::WindConfig::MAX_NODES) = 2^26 nodes (768 MiB of samples).
-    pub const MAX_NODES: usize = MAX_NODES;
+    pub const MAX_NODES: usize = crate::spectrum::Synthesizer::MAX_NODES;
 
     /// Mean wind speed at 10 m, m/s, for each Beaufort force 0–12: the middle of the WMO range of
     /// the force (force 0: calm, below 0.3 m/s; force 12: the lower bound of hurricane force,
@@ -243,13 +230,13 @@ impl WindConfig {
     pub const BEAUFORT_SPEEDS: [f32; 13] = BEAUFORT_SPEEDS;
 
     /// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
-    pub const MAX_REFERENCE_SPEED: f32 = MAX_REFERENCE_SPEED;
+    pub const MAX_REFERENCE_SPEED: f32 = 1.0e4;
 
     /// Highest accepted `turbulence_intensity`.
-    pub const MAX_TURBULENCE_INTENSITY: f32 = MAX_TURBULENCE_INTENSITY;
+    pub const MAX_TURBULENCE_INTENSITY: f32 = 10.0;
 
     /// Least accepted ln(h_ref/z0): the reference height is at least e^0.1 ≈ 1.105 times the
     /// roughness length. It keeps eq. 10's u* = κU/ln(h/z0) finite and the default turbulence
     /// intensity 1/ln(h/z0) within [`WindConfig::MAX_TURBULENCE_INTENSITY`](crate::wind::WindConfig::MAX_TURBULENCE_INTENSITY).
-    pub const MIN_LOG_RATIO: f32 = MIN_LOG_RATIO;
+    pub const MIN_LOG_RATIO: f32 = 0.1;
 }

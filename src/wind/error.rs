@@ -4,7 +4,6 @@ use bevy::reflect::Reflect;
 use thiserror::Error;
 
 use crate::error::InvalidValue;
-use crate::spectrum::MAX_NODES;
 
 /// A [`WindConfig`](super::config::WindConfig) field that is out of range. [`WindError::field`] names it.
 #[derive(Clone, Debug, Error, PartialEq, Reflect)]
@@ -21,7 +20,9 @@ pub enum WindError {
         len: usize,
     },
     /// More nodes than [`WindConfig::MAX_NODES`](crate::wind::WindConfig::MAX_NODES).
-    #[error("`{field}`: {nodes} nodes in all, more than the limit of {MAX_NODES}")]
+    #[error(
+        "`{field}`: {nodes} nodes in all, more than the limit of 67108864 (`WindConfig::MAX_NODES`)"
+    )]
     TooManyNodes {
         /// The field's name.
         field: &'static str,
@@ -38,14 +39,4 @@ impl WindError {
             Self::TooManyNodes { field, .. } => field,
         }
     }
-}
-
-/// `Ok` when `ok`, otherwise an [`WindError::Invalid`] naming `field`.
-pub(crate) fn check(
-    ok: bool,
-    field: &'static str,
-    value: f32,
-    reason: &'static str,
-) -> Result<(), WindError> {
-    Ok(InvalidValue::check(ok, field, value, reason)?)
 }

@@ -19,6 +19,7 @@ mod error;
 mod field;
 #[cfg(feature = "gizmos")]
 mod gizmos;
+mod local;
 mod placement;
 mod plugin;
 pub(crate) mod profile;
@@ -42,6 +43,6 @@ pub use plugin::WindPlugin;
 pub use pulse::Pulse;
 pub use rebuild::{WindRebuild, WindRebuilt};
 pub use settings::WindSettings;
-pub use shelter::{ShelterKind, WindShelter};
+pub use shelter::{ShelterKind, WindShelter, WindShelterInvalid};
 pub use snapshot::WindSnapshot;
 pub use source::{SourceShape, WindSource, WindSourceInvalid};

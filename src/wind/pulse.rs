@@ -5,11 +5,8 @@ use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use std::f64::consts::TAU;
 
-use super::error::{WindError, check};
-
-/// Largest pulse frequency, Hz: faster than any wind gust; it keeps the phase 2πft finite and
-/// exact enough in f64 over the whole clock.
-pub(crate) const MAX_PULSE_FREQUENCY: f32 = 100.0;
+use super::error::WindError;
+use crate::error::InvalidValue;
 
 /// The wind's strength swells and eases periodically: it is multiplied by
 /// `1 + magnitude · sin(2π · frequency · t)` at wind time `t`. The factor averages to 1 over a
@@ -53,19 +50,20 @@ impl Pulse {
     /// Checks both numbers; the error names `pulse.magnitude` or `pulse.frequency`.
     pub fn validate(&self) -> Result<(), WindError> {
         let m = self.magnitude;
-        check(
+        InvalidValue::check(
             m.is_finite() && (0.0..=1.0).contains(&m),
             "pulse.magnitude",
             m,
             "must lie in [0, 1]",
         )?;
         let f = self.frequency;
-        check(
-            f.is_finite() && (0.0..=MAX_PULSE_FREQUENCY).contains(&f),
+        InvalidValue::check(
+            f.is_finite() && (0.0..=Pulse::MAX_FREQUENCY).contains(&f),
             "pulse.frequency",
             f,
             "must lie in [0, 100] Hz",
-        )
+        )?;
+        Ok(())
     }
 
     /// Whether it changes anything.
@@ -79,7 +77,7 @@ impl Pulse {
         let clamp = |v: f32, hi: f32| if v.is_finite() { v.clamp(0.0, hi) } else { 0.0 };
         Self::new(
             clamp(self.magnitude, 1.0),
-            clamp(self.frequency, MAX_PULSE_FREQUENCY),
+            clamp(self.frequency, Pulse::MAX_FREQUENCY),
         )
     }
 
@@ -103,5 +101,5 @@ impl Pulse {
 impl Pulse {
     /// Largest pulse frequency, Hz: faster than any wind gust; it keeps the phase 2πft finite and
     /// exact enough in f64 over the whole clock.
-    pub const MAX_FREQUENCY: f32 = MAX_PULSE_FREQUENCY;
+    pub const MAX_FREQUENCY: f32 = 100.0;
 }

@@ -8,13 +8,8 @@ use bevy::tasks::{AsyncComputeTaskPool, Task, TaskPool};
 
 use super::config::WindConfig;
 use super::error::WindError;
-use super::field::{WindField, next_generation, validate_extra};
+use super::field::{WindField, next_generation};
 use super::pulse::Pulse;
-
-/// Fixed steps from a rebuild's request to its landing (0.5 s at 60 Hz): long enough for a
-/// 128² plane or a 64³ volume on a slow machine; a larger field that is not ready by then is
-/// waited for at that step.
-pub(crate) const REBUILD_STEPS: u32 = 30;
 
 /// A [`WindField`] being synthesised on the [`AsyncComputeTaskPool`]. Insert one (or edit
 /// [`WindSettings`](super::settings::WindSettings), which starts one for you); [`WindPlugin`](super::plugin::WindPlugin) swaps the new
@@ -93,7 +88,7 @@ pub(crate) fn start_rebuild(
     replaces: Option<(u64, Mean)>,
 ) -> Result<WindRebuild, WindError> {
     let requested = next_generation();
-    validate_extra(&config)?;
+    config.validate()?;
     let pool = AsyncComputeTaskPool::get_or_init(TaskPool::default);
     let job = config.clone();
     let task = pool.spawn(async move {
@@ -105,7 +100,7 @@ pub(crate) fn start_rebuild(
         task: Some(task),
         replaces,
         requested,
-        steps: REBUILD_STEPS,
+        steps: WindRebuild::DEFAULT_STEPS,
         elapsed: 0,
     })
 }
@@ -198,5 +193,5 @@ impl WindRebuild {
     /// Fixed steps from a rebuild's request to its landing (0.5 s at 60 Hz): long enough for a
     /// 128² plane or a 64³ volume on a slow machine; a larger field that is not ready by then is
     /// waited for at that step.
-    pub const DEFAULT_STEPS: u32 = REBUILD_STEPS;
+    pub const DEFAULT_STEPS: u32 = 30;
 }

@@ -1,7 +1,7 @@
 //! Shelter: [`WindShelter`] boxes that calm the global wind in their lee (a wall, a hedge, a
 //! house) or inside them (a room).
 
-use super::placement::{Placement, check_size, fade, size};
+use super::local::{Placement, check_size, fade, size};
 use bevy::ecs::component::Component;
 use bevy::ecs::reflect::ReflectComponent;
 use bevy::math::{Quat, Vec3, Vec3A};
@@ -85,7 +85,7 @@ impl WindShelter {
 
     /// Checks the numbers a plugin would place: half extents finite and ≥ 0, and for a wall
     /// `lee_heights` finite and ≥ 0 and `depth` in [0, 1]. What fails here shelters nothing and
-    /// the entity gets a [`WindSourceInvalid`](super::source::WindSourceInvalid) naming the field.
+    /// the entity gets a [`WindShelterInvalid`] naming the field.
     ///
     /// # Errors
     /// The first field that fails, named (`half_extents`, `kind.lee_heights`, `kind.depth`).
@@ -230,3 +230,12 @@ impl PlacedShelter {
         }
     }
 }
+
+/// Why a [`WindShelter`] calms nothing: a number that is not finite or out of range, or a
+/// transform that places it nowhere (the error names the field). Inserted when the problem
+/// appears (logged once), removed once it is gone; the other shelters and sources go on.
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Debug)]
+pub struct WindShelterInvalid(pub WindError);
+
+crate::lifecycle::invalid_marker!(WindShelterInvalid, WindError);

@@ -1,13 +1,13 @@
 //! A rigid plate with six degrees of freedom driven by per-face lift and drag: a physically
 //! falling leaf, card or coin.
 
-use crate::error::InvalidValue;
 use bevy::math::{Quat, Vec3};
 use bevy::reflect::Reflect;
 
-use super::coefficients::check;
-pub use super::coefficients::{AeroCoefficients, AeroError};
-use crate::guard::{MAX_SIZE, MIN_SIZE};
+use super::coefficients::AeroCoefficients;
+use super::error::AeroError;
+use crate::error::InvalidValue;
+use crate::freefall::Shape;
 
 mod step;
 
@@ -55,9 +55,6 @@ impl Default for PlateState {
     }
 }
 
-/// Largest speed (m/s) or spin (rad/s) a [`PlateState`] may start from.
-pub(crate) const MAX_STATE_SPEED: f32 = 1.0e6;
-
 impl PlateState {
     /// Checks that the state can be simulated: a finite position within
     /// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE), a rotation that is finite and not zero (any
@@ -90,7 +87,7 @@ impl PlateState {
             ("state.angular_velocity", self.angular_velocity),
         ] {
             let largest = v.abs().max_element();
-            if largest.is_nan() || largest > MAX_STATE_SPEED {
+            if largest.is_nan() || largest > PlateState::MAX_SPEED {
                 return Err(invalid(field, largest, "must be finite and within ±1e6"));
             }
         }
@@ -98,8 +95,6 @@ impl PlateState {
     }
 }
 
-/// Largest substeps per step; past it the step's substeps grow (the drag stays implicit).
-pub(crate) const MAX_SUBSTEPS: u32 = 256;
 /// Largest h × (lift rate) a substep may take.
 pub(crate) const LIFT_STEP: f32 = 0.25;
 
@@ -119,17 +114,17 @@ impl RigidPlate {
             ("width", width),
             ("thickness", thickness),
         ] {
-            check(
+            InvalidValue::check(
+                (Shape::MIN_SIZE..=Shape::MAX_SIZE).contains(&value) && value.is_finite(),
                 field,
                 value,
-                (MIN_SIZE..=MAX_SIZE).contains(&value),
                 "must be within 1e-7..1e3 m",
             )?;
         }
-        check(
+        InvalidValue::check(
+            density > 0.0 && density <= 1e7 && density.is_finite(),
             "density",
             density,
-            density > 0.0 && density <= 1e7,
             "must be > 0 and ≤ 1e7 kg/m³",
         )?;
         // Checked on what the solver divides by: the mass, in f64.
@@ -176,13 +171,23 @@ impl RigidPlate {
         inertia: Vec3,
         coefficients: AeroCoefficients,
     ) -> Result<Self, AeroError> {
-        check("mass", mass, mass > 0.0, "must be finite and > 0")?;
+        InvalidValue::check(
+            mass > 0.0 && mass.is_finite(),
+            "mass",
+            mass,
+            "must be finite and > 0",
+        )?;
         for (field, value) in [
             ("inertia.x", inertia.x),
             ("inertia.y", inertia.y),
             ("inertia.z", inertia.z),
         ] {
-            check(field, value, value > 0.0, "must be finite and > 0")?;
+            InvalidValue::check(
+                value > 0.0 && value.is_finite(),
+                field,
+                value,
+                "must be finite and > 0",
+            )?;
         }
         coefficients.validate()?;
         // Faces that can exert no force are dropped, so no NaN can reach the solver; the rest
@@ -235,11 +240,11 @@ impl RigidPlate {
 /// Limits and constants of [`PlateState`].
 impl PlateState {
     /// Largest speed (m/s) or spin (rad/s) a [`PlateState`] may start from.
-    pub const MAX_SPEED: f32 = MAX_STATE_SPEED;
+    pub const MAX_SPEED: f32 = 1.0e6;
 }
 
 /// Limits and constants of [`RigidPlate`].
 impl RigidPlate {
     /// Largest substeps per step; past it the step's substeps grow (the drag stays implicit).
-    pub const MAX_SUBSTEPS: u32 = MAX_SUBSTEPS;
+    pub const MAX_SUBSTEPS: u32 = 256;
 }

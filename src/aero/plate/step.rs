@@ -4,7 +4,7 @@
 use bevy::math::{Mat3, Quat, Vec3};
 
 use super::super::force::{drag_rate, face_force};
-use super::{LIFT_STEP, MAX_SUBSTEPS, PlateState, RigidPlate};
+use super::{LIFT_STEP, PlateState, RigidPlate};
 
 impl RigidPlate {
     /// Kinetic plus potential energy, J (potential measured from the origin against
@@ -81,12 +81,12 @@ impl RigidPlate {
             s.rotation = rotation;
         }
         let mut remaining = dt;
-        for i in 0..MAX_SUBSTEPS {
+        for i in 0..RigidPlate::MAX_SUBSTEPS {
             let rate = self.lift_rate(s, wind);
             // The last substep takes what is left, with the lift scaled down so that it still
             // turns v_rel by at most LIFT_STEP (a limiter that acts only on bodies whose lift
-            // rate exceeds MAX_SUBSTEPS × LIFT_STEP / dt, e.g. a 2 mm foil in water).
-            let (h, lift_scale) = if i + 1 == MAX_SUBSTEPS {
+            // rate exceeds RigidPlate::MAX_SUBSTEPS × LIFT_STEP / dt, e.g. a 2 mm foil in water).
+            let (h, lift_scale) = if i + 1 == RigidPlate::MAX_SUBSTEPS {
                 let h = remaining;
                 (h, (LIFT_STEP / (h * rate).max(1e-30)).min(1.0))
             } else {

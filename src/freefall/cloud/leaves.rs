@@ -7,20 +7,16 @@ use bevy::math::{Quat, Vec3};
 use bevy::tasks::{ParallelSliceMut, TaskPool};
 
 use super::CloudRegion;
-use crate::freefall::markov::BoundedChain;
+use crate::freefall::lod::{FallClock, TierClock};
 use crate::freefall::model::FallModel;
-use crate::freefall::motion::FallScales;
-use crate::freefall::path::{FallPath, StepOutcome, WindTilt};
-use crate::freefall::random::FallRng;
-use crate::freefall::release::FallRelease;
-use crate::freefall::tiers::TierClock;
+use crate::freefall::model::markov::BoundedChain;
+use crate::freefall::model::motion::FallScales;
+use crate::freefall::model::path::{FallPath, StepOutcome, WindTilt};
+use crate::freefall::model::random::FallRng;
+use crate::freefall::model::release::FallRelease;
 use crate::lod::Focus;
 use crate::lod::LodTiers;
 use crate::wind::WindField;
-
-/// Leaves a parallel task steps together: big enough that the task costs little beside its
-/// work (≈ 50 µs), small enough that two threads share the work of a few thousand leaves.
-pub(crate) const CLOUD_CHUNK: usize = 512;
 
 /// One leaf: its fall and when it was last stepped.
 #[derive(Clone, Debug)]
@@ -92,12 +88,9 @@ pub struct CloudLeaves {
     ground: f32,
     lod: LodTiers,
     recycle_after: Option<f32>,
-    /// Seconds stepped, summed in f64.
-    clock: f64,
-    /// Fixed steps taken.
-    steps: u64,
-    /// The last step's length, s (what an overstep is a share of).
-    last_dt: f32,
+    /// Seconds and fixed steps taken, and the last step's length (what an overstep is a share
+    /// of): the clock single objects' tiers run on too.
+    clock: FallClock,
     /// Leaves on the ground.
     resting: usize,
 }
@@ -128,9 +121,7 @@ impl CloudLeaves {
             ground,
             lod,
             recycle_after,
-            clock: 0.0,
-            steps: 0,
-            last_dt: 0.0,
+            clock: FallClock::default(),
             resting: 0,
         };
         for index in 0..count {
@@ -181,32 +172,29 @@ impl CloudLeaves {
     /// is the same bits for any number of threads.
     pub fn step(&mut self, step: &CloudStep, pool: Option<&TaskPool>) -> CloudStepReport {
         let dt = if step.dt.is_finite() {
-            step.dt.clamp(0.0, crate::freefall::release::MAX_STEP)
+            step.dt.clamp(0.0, FallRelease::MAX_STEP)
         } else {
             0.0
         };
-        self.clock += f64::from(dt);
-        self.steps += 1;
-        self.last_dt = dt;
+        self.clock.tick(dt);
         let ctx = ChunkContext {
             step,
             clock: self.clock,
-            steps: self.steps,
             lod: self.lod,
             recycle_after: self.recycle_after,
         };
         let reports: Vec<ChunkReport> = match pool {
-            Some(pool) if self.leaves.len() > CLOUD_CHUNK => {
+            Some(pool) if self.leaves.len() > CloudLeaves::CHUNK => {
                 self.leaves
-                    .par_chunk_map_mut(pool, CLOUD_CHUNK, |c, chunk| {
-                        step_chunk(chunk, c * CLOUD_CHUNK, &ctx)
+                    .par_chunk_map_mut(pool, CloudLeaves::CHUNK, |c, chunk| {
+                        step_chunk(chunk, c * CloudLeaves::CHUNK, &ctx)
                     })
             }
             _ => self
                 .leaves
-                .chunks_mut(CLOUD_CHUNK)
+                .chunks_mut(CloudLeaves::CHUNK)
                 .enumerate()
-                .map(|(c, chunk)| step_chunk(chunk, c * CLOUD_CHUNK, &ctx))
+                .map(|(c, chunk)| step_chunk(chunk, c * CloudLeaves::CHUNK, &ctx))
                 .collect(),
         };
         let mut report = CloudStepReport::default();
@@ -219,7 +207,7 @@ impl CloudLeaves {
             due.extend(
                 r.recycle
                     .into_iter()
-                    .map(|i| chunk * CLOUD_CHUNK + i as usize),
+                    .map(|i| chunk * CloudLeaves::CHUNK + i as usize),
             );
         }
         // Let go again, in index order (each from its own stream: order changes nothing).
@@ -230,7 +218,7 @@ impl CloudLeaves {
             leaf.path = path;
             leaf.releases += 1;
             leaf.resting = 0.0;
-            leaf.tier = TierClock::stepped_at(self.clock, 0.0);
+            leaf.tier = TierClock::stepped_at(self.clock.seconds, 0.0);
             report.recycled += 1;
             self.resting -= 1;
         }
@@ -249,7 +237,7 @@ impl CloudLeaves {
         } else {
             1.0
         };
-        let now = self.clock + f64::from(overstep * self.last_dt);
+        let now = self.clock.seconds + f64::from(overstep * self.clock.last_dt);
         out.resize(
             self.leaves.len(),
             LeafPose {
@@ -259,10 +247,10 @@ impl CloudLeaves {
         );
         let pose = |leaf: &Leaf| leaf.shown(now);
         match pool {
-            Some(pool) if self.leaves.len() > CLOUD_CHUNK => {
+            Some(pool) if self.leaves.len() > CloudLeaves::CHUNK => {
                 let leaves = &self.leaves;
-                out.par_chunk_map_mut(pool, CLOUD_CHUNK, |c, poses| {
-                    let first = c * CLOUD_CHUNK;
+                out.par_chunk_map_mut(pool, CloudLeaves::CHUNK, |c, poses| {
+                    let first = c * CloudLeaves::CHUNK;
                     for (i, p) in poses.iter_mut().enumerate() {
                         *p = pose(&leaves[first + i]);
                     }
@@ -309,7 +297,7 @@ impl CloudLeaves {
 
     /// Seconds stepped.
     pub fn clock(&self) -> f64 {
-        self.clock
+        self.clock.seconds
     }
 
     /// The sizes every leaf shares.
@@ -321,8 +309,7 @@ impl CloudLeaves {
 /// What the chunks of one step share.
 struct ChunkContext<'a> {
     step: &'a CloudStep<'a>,
-    clock: f64,
-    steps: u64,
+    clock: FallClock,
     lod: LodTiers,
     recycle_after: Option<f32>,
 }
@@ -347,18 +334,18 @@ fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkRepo
         // their turns on different steps, and a change of tier never waits longer than 4 steps.
         // (`every` is a power of two: the phase is a mask, not a division.) A leaf just let go
         // takes its first step at once and its next on its phase.
-        let phase = ((ctx.steps + (first + i) as u64) & u64::from(every - 1)) as u32;
-        if phase != 0 && !leaf.tier.fresh() {
+        let index = (first + i) as u32;
+        if !ctx.clock.due(every, index) && !leaf.tier.fresh() {
             report.resting += usize::from(leaf.path.landed());
             continue;
         }
         let wind = step.wind.map_or(Vec3::ZERO, |w| w.velocity(position));
         // Its tier's next turn is this many steps on.
-        let next = (every - phase) as f32 * step.dt;
+        let next = ctx.clock.steps_to_next(every, index) as f32 * step.dt;
         let (outcome, waited) = leaf.tier.advance(
             &mut leaf.path,
             step.model,
-            ctx.clock,
+            ctx.clock.seconds,
             next,
             wind,
             &step.tilt,
@@ -397,5 +384,5 @@ fn leaf_seed(seed: u64, index: usize, release: u32) -> u64 {
 impl CloudLeaves {
     /// Leaves a parallel task steps together: big enough that the task costs little beside its
     /// work (≈ 50 µs), small enough that two threads share the work of a few thousand leaves.
-    pub const CHUNK: usize = CLOUD_CHUNK;
+    pub const CHUNK: usize = 512;
 }

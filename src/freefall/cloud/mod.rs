@@ -39,7 +39,7 @@ mod plugin;
 
 use crate::lod::LodTiers;
 pub use leaves::{CloudLeaves, CloudStep, CloudStepReport, LeafPose};
-pub use plugin::{LeafCloudInvalid, LeafCloudPlugin, LeafCloudState};
+pub use plugin::{LeafCloudPlugin, LeafCloudState};
 
 use crate::error::InvalidValue;
 use bevy::ecs::prelude::*;
@@ -49,11 +49,8 @@ use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::Transform;
 
 use super::model::FallModel;
+use super::model::error::FallError;
 use super::object::FallingObject;
-use super::regime::FallError;
-
-/// Most leaves one cloud may hold.
-pub(crate) const MAX_CLOUD_LEAVES: u32 = 4_000_000;
 
 /// A box the leaves are let go in, world coordinates, m.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -157,7 +154,7 @@ impl LeafCloud {
             })
         };
         let regime = self.object.regime()?;
-        if self.count > MAX_CLOUD_LEAVES {
+        if self.count > LeafCloud::MAX_LEAVES {
             return Err(invalid("count", self.count as f32, "must be ≤ 4 000 000"));
         }
         let within =
@@ -195,7 +192,7 @@ impl LeafCloud {
             return Err(invalid("recycle_after", t, "must be finite and ≥ 0"));
         }
         // The ground single objects accept, but finite: a cloud's leaves always land.
-        super::release::check_ground(ground, false)?;
+        super::model::release::check_ground(ground, false)?;
         let chain = match &self.object.markov {
             Some(chain) => std::sync::Arc::new(chain.bounded(regime.main)),
             None => model.bounded_shared(regime.main),
@@ -214,8 +211,16 @@ impl LeafCloud {
     }
 }
 
+/// Why a [`LeafCloud`] does not fall: the error names the field. Inserted in place of the
+/// leaves (logged once), removed once the component is changed and valid.
+#[derive(Component, Clone, Debug, PartialEq, Reflect)]
+#[reflect(Component, Debug)]
+pub struct LeafCloudInvalid(pub FallError);
+
+crate::lifecycle::invalid_marker!(LeafCloudInvalid, FallError);
+
 /// Limits and constants of [`LeafCloud`].
 impl LeafCloud {
     /// Most leaves one cloud may hold.
-    pub const MAX_LEAVES: u32 = MAX_CLOUD_LEAVES;
+    pub const MAX_LEAVES: u32 = 4_000_000;
 }

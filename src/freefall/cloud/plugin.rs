@@ -8,11 +8,11 @@ use bevy::tasks::ComputeTaskPool;
 use bevy::time::{Fixed, Time};
 
 use super::leaves::{CloudLeaves, CloudStep, CloudStepReport, LeafPose};
-use super::{CloudRegion, LeafCloud};
+use super::{CloudRegion, LeafCloud, LeafCloudInvalid};
 use crate::freefall::model::FallModel;
+use crate::freefall::model::error::FallError;
+use crate::freefall::model::path::WindTilt;
 use crate::freefall::object::FallSettings;
-use crate::freefall::path::WindTilt;
-use crate::freefall::regime::FallError;
 use crate::lifecycle::Described;
 use crate::lod::{LodFocus, LodTiers};
 use crate::schedule::WindfallSystems;
@@ -48,14 +48,6 @@ impl LeafCloudState {
         self.last
     }
 }
-
-/// Why a [`LeafCloud`] does not fall: the error names the field. Inserted in place of the
-/// leaves (logged once), removed once the component is changed and valid.
-#[derive(Component, Clone, Debug, PartialEq, Reflect)]
-#[reflect(Component, Debug)]
-pub struct LeafCloudInvalid(pub FallError);
-
-crate::lifecycle::invalid_marker!(LeafCloudInvalid, FallError);
 
 crate::schedule::simulation_plugin!(
     /// Steps every [`LeafCloud`] on the fixed timestep (in [`WindfallSystems::Simulate`]) and poses

@@ -7,7 +7,7 @@ use super::super::config::WindConfig;
 use super::super::ease::WindEasing;
 use super::super::error::WindError;
 use super::super::pulse::Pulse;
-use super::{MAX_CLOCK, WindField, validate_extra};
+use super::WindField;
 use crate::error::InvalidValue;
 
 impl WindField {
@@ -28,7 +28,7 @@ impl WindField {
     fn set_mean(&mut self, edit: impl FnOnce(&mut WindConfig)) -> Result<(), WindError> {
         let mut config = self.config.clone();
         edit(&mut config);
-        validate_extra(&config)?;
+        config.validate()?;
         self.rebase_drift();
         self.config = config;
         self.ease = None;
@@ -77,7 +77,7 @@ impl WindField {
         let mut target = self.config.clone();
         target.reference_speed = speed;
         target.direction = direction;
-        validate_extra(&target)?;
+        target.validate()?;
         check_time_constant(time_constant)?;
         let direction = crate::guard::unit_vec2(direction).unwrap_or(Vec2::X);
         let now = Vec2::new(self.along.x, self.along.z);
@@ -146,20 +146,11 @@ impl WindField {
         self.time
     }
 
-    /// Wind time, s, in full: the old name of [`Self::time_f64`].
-    #[deprecated(
-        since = "0.2.0",
-        note = "renamed to `time_f64` (as Bevy's `Time::elapsed_secs_f64`)"
-    )]
-    pub fn time_seconds(&self) -> f64 {
-        self.time_f64()
-    }
-
     /// Sets the wind clock to `time` seconds, clamped to ±[`WindField::MAX_CLOCK`](crate::wind::WindField::MAX_CLOCK) (a non-finite time is
     /// ignored).
     pub fn set_clock(&mut self, time: f64) {
         if time.is_finite() {
-            self.time = time.clamp(-MAX_CLOCK, MAX_CLOCK);
+            self.time = time.clamp(-WindField::MAX_CLOCK, WindField::MAX_CLOCK);
             self.step_start = self.time;
         }
     }
@@ -171,7 +162,7 @@ impl WindField {
         let step = f64::from(dt) * f64::from(self.time_scale);
         self.step_start = self.time;
         if !self.paused && step.is_finite() {
-            self.time = (self.time + step).clamp(-MAX_CLOCK, MAX_CLOCK);
+            self.time = (self.time + step).clamp(-WindField::MAX_CLOCK, WindField::MAX_CLOCK);
             self.ease_step(step.abs().min(f64::from(f32::MAX)) as f32);
         }
     }

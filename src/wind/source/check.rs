@@ -6,7 +6,8 @@ use bevy::ecs::reflect::ReflectComponent;
 use bevy::reflect::Reflect;
 
 use super::super::error::WindError;
-use super::{SourceShape, WindSource, check};
+use super::{SourceShape, WindSource};
+use crate::error::InvalidValue;
 use crate::guard::MAX_COORDINATE;
 
 impl WindSource {
@@ -18,10 +19,15 @@ impl WindSource {
     /// The first field that fails, named (`shape.radius`, `shape.velocity`, `shape.speed`,
     /// `shape.peak_speed`, `shape.updraft`, `shape.strength`, `strength`, …).
     pub fn validate(&self) -> Result<(), WindError> {
-        let finite = |field, v: f32| check(field, v, true, "must be finite");
+        let finite = |field, v: f32| InvalidValue::check(v.is_finite(), field, v, "must be finite");
         let sized = |field, v: f32| {
             let ok = (0.0..=MAX_COORDINATE).contains(&v);
-            check(field, v, ok, "must be finite, ≥ 0 and ≤ MAX_COORDINATE")
+            InvalidValue::check(
+                ok && v.is_finite(),
+                field,
+                v,
+                "must be finite, ≥ 0 and ≤ MAX_COORDINATE",
+            )
         };
         match self.shape {
             SourceShape::Sphere { radius, velocity } => {
@@ -75,7 +81,7 @@ impl WindSource {
                 sized("shape.range", range)?;
             }
         }
-        finite("strength", self.strength)
+        Ok(finite("strength", self.strength)?)
     }
 }
 

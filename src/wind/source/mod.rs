@@ -14,8 +14,9 @@ use bevy::transform::components::Transform;
 use std::f32::consts::FRAC_PI_2;
 
 use super::error::WindError;
-use super::placement::{check_size, size};
+use super::local::{check_size, size};
 use super::pulse::Pulse;
+use crate::error::InvalidValue;
 
 /// What a [`WindSource`] blows, in metres and m/s.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -130,11 +131,6 @@ fn finite(v: f32) -> f32 {
     if v.is_finite() { v } else { 0.0 }
 }
 
-/// `Ok` for a finite `value` that is `ok`, otherwise an error naming `field`.
-fn check(field: &'static str, value: f32, ok: bool, reason: &'static str) -> Result<(), WindError> {
-    super::error::check(ok && value.is_finite(), field, value, reason)
-}
-
 impl WindSource {
     fn new(shape: SourceShape) -> Self {
         Self {
@@ -171,7 +167,7 @@ impl WindSource {
     pub fn try_sphere(radius: f32, velocity: Vec3) -> Result<Self, WindError> {
         check_size("radius", radius)?;
         let largest = velocity.abs().max_element();
-        check("velocity", largest, true, "must be finite")?;
+        InvalidValue::check(largest.is_finite(), "velocity", largest, "must be finite")?;
         Ok(Self::sphere(radius, velocity))
     }
 
@@ -192,13 +188,13 @@ impl WindSource {
     /// [0, π/2] or a non-finite `speed`.
     pub fn try_fan(range: f32, half_angle: f32, speed: f32) -> Result<Self, WindError> {
         check_size("range", range)?;
-        check(
+        InvalidValue::check(
+            (0.0..=FRAC_PI_2).contains(&half_angle) && half_angle.is_finite(),
             "half_angle",
             half_angle,
-            (0.0..=FRAC_PI_2).contains(&half_angle),
             "must be in [0, π/2]",
         )?;
-        check("speed", speed, true, "must be finite")?;
+        InvalidValue::check(speed.is_finite(), "speed", speed, "must be finite")?;
         Ok(Self::fan(range, half_angle, speed))
     }
 
@@ -219,7 +215,12 @@ impl WindSource {
     /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), or a non-finite `peak_speed`.
     pub fn try_vortex(radius: f32, peak_speed: f32) -> Result<Self, WindError> {
         check_size("radius", radius)?;
-        check("peak_speed", peak_speed, true, "must be finite")?;
+        InvalidValue::check(
+            peak_speed.is_finite(),
+            "peak_speed",
+            peak_speed,
+            "must be finite",
+        )?;
         Ok(Self::vortex(radius, peak_speed))
     }
 
@@ -269,8 +270,13 @@ impl WindSource {
         range: f32,
     ) -> Result<Self, WindError> {
         let reason = "must be finite and ≥ 0";
-        check("strength", strength, true, "must be finite")?;
-        check("front_speed", front_speed, front_speed >= 0.0, reason)?;
+        InvalidValue::check(strength.is_finite(), "strength", strength, "must be finite")?;
+        InvalidValue::check(
+            front_speed >= 0.0 && front_speed.is_finite(),
+            "front_speed",
+            front_speed,
+            reason,
+        )?;
         check_size("width", width)?;
         check_size("range", range)?;
         Ok(Self::gust(strength, front_speed, width, range))
@@ -280,8 +286,18 @@ impl WindSource {
     /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE).
     pub fn try_blast(peak_speed: f32, front_speed: f32, radius: f32) -> Result<Self, WindError> {
         let reason = "must be finite and ≥ 0";
-        check("peak_speed", peak_speed, peak_speed >= 0.0, reason)?;
-        check("front_speed", front_speed, front_speed >= 0.0, reason)?;
+        InvalidValue::check(
+            peak_speed >= 0.0 && peak_speed.is_finite(),
+            "peak_speed",
+            peak_speed,
+            reason,
+        )?;
+        InvalidValue::check(
+            front_speed >= 0.0 && front_speed.is_finite(),
+            "front_speed",
+            front_speed,
+            reason,
+        )?;
         check_size("radius", radius)?;
         Ok(Self::blast(peak_speed, front_speed, radius))
     }

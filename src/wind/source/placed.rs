@@ -3,7 +3,7 @@
 
 use bevy::math::{Quat, Vec3, Vec3A};
 
-use super::super::placement::{Placement, fade};
+use super::super::local::{Placement, fade};
 use super::super::pulse::Pulse;
 use super::{SourceShape, WindSource, finite};
 
