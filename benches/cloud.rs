@@ -54,10 +54,7 @@ fn step<'a>(model: &'a FallModel, wind: &'a WindField, focus: Option<Focus>) -> 
         model,
         wind: Some(wind),
         dt: DT,
-        tilt: WindTilt {
-            max_angle: 0.6,
-            reference_speed: wind.config().reference_speed,
-        },
+        wind_tilt: 0.6,
         focus,
     }
 }

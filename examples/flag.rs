@@ -68,21 +68,16 @@ fn setup(
     commands.spawn(Text::new("Up/Down: wind speed   Left/Right: turn the wind"));
 }
 
-/// ↑/↓ change the mean wind's speed by 1 m/s, ←/→ turn it by 15°.
-fn steer_the_wind(keys: Res<ButtonInput<KeyCode>>, mut wind: ResMut<WindField>) {
-    let (speed, direction) = (wind.config().reference_speed, wind.config().direction);
-    let change = if keys.just_pressed(KeyCode::ArrowUp) {
-        wind.set_reference_speed(speed + 1.0)
+/// ↑/↓ change the mean wind's speed by 1 m/s, ←/→ turn it by 15°: the app's wind is set in
+/// [`WindSettings`] (applied at the next fixed step; a bad value is warned about by name).
+fn steer_the_wind(keys: Res<ButtonInput<KeyCode>>, mut wind: ResMut<WindSettings>) {
+    if keys.just_pressed(KeyCode::ArrowUp) {
+        wind.reference_speed += 1.0;
     } else if keys.just_pressed(KeyCode::ArrowDown) {
-        wind.set_reference_speed((speed - 1.0).max(0.0))
+        wind.reference_speed = (wind.reference_speed - 1.0).max(0.0);
     } else if keys.just_pressed(KeyCode::ArrowLeft) {
-        wind.set_direction(Vec2::from_angle(15f32.to_radians()).rotate(direction))
+        wind.direction = Vec2::from_angle(15f32.to_radians()).rotate(wind.direction);
     } else if keys.just_pressed(KeyCode::ArrowRight) {
-        wind.set_direction(Vec2::from_angle(-15f32.to_radians()).rotate(direction))
-    } else {
-        Ok(())
-    };
-    if let Err(error) = change {
-        warn!("{error}");
+        wind.direction = Vec2::from_angle(-15f32.to_radians()).rotate(wind.direction);
     }
 }

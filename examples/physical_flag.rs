@@ -83,25 +83,20 @@ fn setup(
     commands.spawn(Text::new(""));
 }
 
-/// ↑/↓ change the mean wind by 1 m/s; the text shows it.
+/// ↑/↓ change the mean wind by 1 m/s (in [`WindSettings`], applied at the next fixed step); the
+/// text shows the wind that blows.
 fn wind_speed(
     keys: Res<ButtonInput<KeyCode>>,
-    mut wind: ResMut<WindField>,
+    mut settings: ResMut<WindSettings>,
+    wind: Res<WindField>,
     mut text: Single<&mut Text>,
 ) {
-    let speed = wind.config().reference_speed;
-    let wanted = if keys.just_pressed(KeyCode::ArrowUp) {
-        speed + 1.0
+    if keys.just_pressed(KeyCode::ArrowUp) {
+        settings.reference_speed += 1.0;
     } else if keys.just_pressed(KeyCode::ArrowDown) {
-        (speed - 1.0).max(0.0)
-    } else {
-        speed
-    };
-    if wanted != speed
-        && let Err(error) = wind.set_reference_speed(wanted)
-    {
-        warn!("{error}");
+        settings.reference_speed = (settings.reference_speed - 1.0).max(0.0);
     }
+    let speed = wind.config().reference_speed;
     text.0 =
-        format!("wind {wanted:.0} m/s (Up/Down)\nleft: procedural Cloth   right: PhysicalCloth");
+        format!("wind {speed:.0} m/s (Up/Down)\nleft: procedural Cloth   right: PhysicalCloth");
 }

@@ -50,7 +50,7 @@ fn setup(
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
     mut camera: Single<&mut Transform, With<Camera3d>>,
-    mut wind: ResMut<WindField>,
+    mut wind: ResMut<WindSettings>,
     mut settings: ResMut<FallSettings>,
 ) {
     let here = DespawnOnExit(Scene::Coin);
@@ -60,7 +60,7 @@ fn setup(
         Vec3::new(0.0, 0.25, 0.0),
     );
     // Still water (raise the wind in the panel for a current).
-    let _ = wind.set_reference_speed(0.0);
+    wind.reference_speed = 0.0;
     settings.ground_height = 0.00075;
     commands.insert_resource(ClearColor(Color::srgb(0.93, 0.93, 0.9)));
     commands.insert_resource(GlobalAmbientLight {

@@ -371,7 +371,7 @@ fn apply_fabric(
     shown: Query<Entity, With<PhysicalSide>>,
     mut scenery: Query<(&Setting, &mut Visibility)>,
     mut camera: Single<&mut Transform, (With<Camera3d>, Without<Hanging>)>,
-    mut wind: ResMut<WindField>,
+    mut wind: ResMut<WindSettings>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
 ) {
@@ -405,7 +405,7 @@ fn apply_fabric(
         // Both flags, the physical one on the left.
         Fabric::Physical => (7.5, Vec3::new(-2.0, 8.4, 7.4), Vec3::new(-0.9, 4.9, 0.0)),
     };
-    let _ = wind.set_reference_speed(speed);
+    wind.reference_speed = speed;
     place_camera(&mut camera, eye, target);
     let (cloth, transform) = cloth_for(*fabric, false);
     if let Some(mut m) = materials.get_mut(&material.0) {

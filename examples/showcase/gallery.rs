@@ -11,7 +11,7 @@ use bevy_windfall::freefall::FallGizmos;
 use bevy_windfall::freefall::{FallPreset, MarkovChain, PrimitiveMotion};
 use bevy_windfall::prelude::*;
 
-use super::{Scene, SceneInfo, place_camera};
+use super::{Scene, SceneInfo, common, place_camera};
 
 /// How far every object falls, m (the Fig. 15 objects from their own heights, shown scaled to
 /// this one), onto a shelf this high.
@@ -51,9 +51,17 @@ struct Exhibit {
 #[derive(Component)]
 struct Resting(Timer);
 
-/// A label that follows a point of the scene.
+/// A label that follows a point of the scene: its full text, and the short one shown on a small
+/// window (under [`WIDE`] logical pixels), where the full ones would run into each other.
 #[derive(Component)]
-struct Label(Vec3);
+struct Label {
+    at: Vec3,
+    full: String,
+    short: String,
+}
+
+/// The narrowest window, logical pixels, that shows the labels in full.
+const WIDE: f32 = 800.0;
 
 /// A chain that starts in `motion` and stays there.
 fn only(motion: PrimitiveMotion) -> MarkovChain {
@@ -83,7 +91,7 @@ fn setup(
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
     mut camera: Single<&mut Transform, With<Camera3d>>,
-    mut wind: ResMut<WindField>,
+    mut wind: ResMut<WindSettings>,
     mut settings: ResMut<FallSettings>,
 ) {
     let here = DespawnOnExit(Scene::Gallery);
@@ -95,7 +103,7 @@ fn setup(
     );
     // Still air: the paper's §2–3 synthesis alone. Every object falls in its column's frame,
     // whose floor is the shelf.
-    let _ = wind.set_reference_speed(0.0);
+    wind.reference_speed = 0.0;
     settings.ground_height = 0.0;
     commands.insert_resource(ClearColor(Color::srgb(0.93, 0.93, 0.90)));
     commands.insert_resource(GlobalAmbientLight {
@@ -178,6 +186,7 @@ fn setup(
             &mut commands,
             Vec3::new(x, 0.3, 0.8),
             format!("{}\n{}", motion.label(), name(motion)),
+            motion.label(),
             FallGizmos::motion_color(motion),
         );
     }
@@ -236,30 +245,25 @@ fn setup(
             &mut commands,
             Vec3::new(x, 0.34, 0.8),
             text.to_string(),
+            &text[..3],
             Color::srgb(0.15, 0.15, 0.15),
         );
     }
-    label(
-        &mut commands,
-        Vec3::new(2.5 * SPACING, SHELF + HEIGHT + 0.5, 0.0),
-        "the six primitive motions (36 x 20 cm plates)".into(),
-        Color::srgb(0.1, 0.1, 0.1),
-    );
-    label(
-        &mut commands,
-        Vec3::new(7.8 * SPACING, SHELF + HEIGHT + 0.5, 0.0),
-        "the paper's Fig. 15 objects".into(),
-        Color::srgb(0.1, 0.1, 0.1),
-    );
 }
 
-fn label(commands: &mut Commands, at: Vec3, text: String, color: Color) {
+/// A label at `at` in the scene: `full` on a wide window, `short` on a small one.
+fn label(commands: &mut Commands, at: Vec3, full: String, short: &str, color: Color) {
     commands.spawn((
-        Label(at),
-        Text::new(text),
-        TextFont {
-            font_size: FontSize::Px(14.0),
-            ..default()
+        Label {
+            at,
+            full: full.clone(),
+            short: short.to_string(),
+        },
+        Text::new(full),
+        TextFont::from_font_size(14.0),
+        common::FitText {
+            px: 14.0,
+            wrap: false,
         },
         TextColor(color),
         TextLayout::justify(Justify::Center),
@@ -271,14 +275,20 @@ fn label(commands: &mut Commands, at: Vec3, text: String, color: Color) {
     ));
 }
 
-/// Labels follow their points of the scene on screen.
+/// Labels follow their points of the scene on screen, in full or short by the window's width.
 fn place_labels(
     camera: Single<(&Camera, &GlobalTransform), With<Camera3d>>,
-    mut labels: Query<(&Label, &mut Node, &ComputedNode)>,
+    window: Single<&Window>,
+    mut labels: Query<(&Label, &mut Node, &mut Text, &ComputedNode)>,
 ) {
     let (camera, view) = *camera;
-    for (label, mut node, computed) in &mut labels {
-        if let Ok(p) = camera.world_to_viewport(view, label.0) {
+    let wide = window.width() >= WIDE;
+    for (label, mut node, mut text, computed) in &mut labels {
+        let shown = if wide { &label.full } else { &label.short };
+        if text.0 != *shown {
+            text.0.clone_from(shown);
+        }
+        if let Ok(p) = camera.world_to_viewport(view, label.at) {
             let size = computed.size() * computed.inverse_scale_factor();
             node.left = px(p.x - 0.5 * size.x);
             node.top = px(p.y);
@@ -371,8 +381,9 @@ fn draw_trails(exhibits: Query<&Exhibit>, mut gizmos: Gizmos) {
 }
 
 fn show_info(mut info: ResMut<SceneInfo>) {
-    info.0 = "Trails are coloured by the motion they were drawn in; plates are light on top, \
-              dark below.\nOn the shelf: each fall seen from above (the paper's Fig. 8), \
+    info.0 = "Left: the six primitive motions (36 x 20 cm plates); right: the paper's Fig. 15 \
+              objects. Trails are coloured by the motion they were drawn in; plates are light on \
+              top, dark below. On the shelf: each fall seen from above (the paper's Fig. 8), \
               magnified to fit."
         .into();
 }

@@ -199,7 +199,7 @@ fn setup(
     mut materials: ResMut<Assets<StandardMaterial>>,
     mut spawner: ResMut<Spawner>,
     mut camera: Single<&mut Transform, With<Camera3d>>,
-    mut wind: ResMut<WindField>,
+    mut wind: ResMut<WindSettings>,
     mut settings: ResMut<FallSettings>,
     mut swaying: ResMut<Assets<WindSwayMaterial>>,
     gpu: Res<WindGpuBuffers>,
@@ -213,7 +213,7 @@ fn setup(
     view.0 = start.0;
     let (eye, target) = VIEWS[view.0];
     place_camera(&mut camera, eye, target);
-    let _ = wind.set_reference_speed(2.0);
+    wind.reference_speed = 2.0;
     // Just above the grass plane, so resting leaves do not flicker into it.
     settings.ground_height = 0.005;
     commands.insert_resource(ClearColor(Color::srgb(0.62, 0.74, 0.86)));

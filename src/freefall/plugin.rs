@@ -97,7 +97,6 @@ fn step_objects(
     let clock = *clock;
     let focus = crate::lod::focus(&foci);
     let wind = wind.as_deref();
-    let reference_speed = wind.map_or(1.0, |w| w.config().reference_speed);
     let landings = Mutex::new(Vec::new());
     objects
         .par_iter_mut()
@@ -120,10 +119,7 @@ fn step_objects(
             }
             // Resting objects feel the wind too: a strong enough one lifts them again.
             let velocity = wind.map_or(Vec3::ZERO, |w| w.velocity(path.position()));
-            let tilt = WindTilt {
-                max_angle: object.wind_tilt,
-                reference_speed,
-            };
+            let tilt = WindTilt::in_wind(object.wind_tilt, wind);
             let outcome = match state.tier.as_mut() {
                 Some(t) => {
                     let next = clock.steps_to_next(tier, entity.index_u32()) as f32 * dt;

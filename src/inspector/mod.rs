@@ -110,13 +110,12 @@ fn show_inspector(
         return Ok(());
     }
     let ctx = contexts.ctx_mut()?;
-    // In the top-right corner of any window; on a small one (a web page's canvas, a laptop's
-    // split screen) narrower and folded to its title until opened.
+    // In the top-right corner of any window, also after it is resized; on a small one (a web
+    // page's canvas, a laptop's split screen) narrower and folded to its title until opened.
     let screen = ctx.content_rect();
     let width = (0.4 * screen.width()).clamp(200.0, 300.0);
     egui::Window::new("bevy_windfall")
-        .pivot(egui::Align2::RIGHT_TOP)
-        .default_pos([screen.right() - 10.0, screen.top() + 10.0])
+        .anchor(egui::Align2::RIGHT_TOP, [-10.0, 10.0])
         .default_width(width)
         .default_open(screen.width() >= 1000.0)
         .show(ctx, |ui| {

@@ -80,9 +80,7 @@ pub(super) fn wind(ui: &mut egui::Ui, inspector: &mut WindfallInspector, targets
     // held, so dragging a slider does not start a rebuild a frame.
     let live = settings.config.clone();
     let draft = inspector.draft.get_or_insert_with(|| live.clone());
-    draft.reference_speed = live.reference_speed;
-    draft.direction = live.direction;
-    draft.pulse = live.pulse;
+    *draft = draft.with_mean(live.mean());
     ui.add(
         egui::Slider::new(&mut draft.roughness, 1e-4..=2.0)
             .logarithmic(true)

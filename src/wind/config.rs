@@ -109,19 +109,12 @@ impl Default for WindConfig {
     }
 }
 
-/// Mean wind speed at 10 m, m/s, for each Beaufort force 0–12: the middle of the WMO range of
-/// the force (force 0: calm, below 0.3 m/s; force 12: the lower bound of hurricane force,
-/// 32.7 m/s).
-pub(crate) const BEAUFORT_SPEEDS: [f32; 13] = [
-    0.1, 0.9, 2.45, 4.4, 6.7, 9.35, 12.3, 15.5, 18.95, 22.6, 26.45, 30.55, 32.7,
-];
-
 impl WindConfig {
     /// The default wind (over scattered trees, z0 = 0.3 m) at Beaufort force `force` (clamped
     /// to 12): [`WindConfig::BEAUFORT_SPEEDS`](crate::wind::WindConfig::BEAUFORT_SPEEDS) at a reference height of 10 m, where the scale is defined.
     pub fn beaufort(force: u8) -> Self {
         Self {
-            reference_speed: BEAUFORT_SPEEDS[usize::from(force.min(12))],
+            reference_speed: Self::BEAUFORT_SPEEDS[usize::from(force.min(12))],
             reference_height: 10.0,
             ..Self::default()
         }
@@ -227,7 +220,9 @@ impl WindConfig {
     /// Mean wind speed at 10 m, m/s, for each Beaufort force 0–12: the middle of the WMO range of
     /// the force (force 0: calm, below 0.3 m/s; force 12: the lower bound of hurricane force,
     /// 32.7 m/s).
-    pub const BEAUFORT_SPEEDS: [f32; 13] = BEAUFORT_SPEEDS;
+    pub const BEAUFORT_SPEEDS: [f32; 13] = [
+        0.1, 0.9, 2.45, 4.4, 6.7, 9.35, 12.3, 15.5, 18.95, 22.6, 26.45, 30.55, 32.7,
+    ];
 
     /// Highest accepted `reference_speed`, m/s (ten times a hurricane's, far past any use).
     pub const MAX_REFERENCE_SPEED: f32 = 1.0e4;
@@ -239,4 +234,41 @@ impl WindConfig {
     /// roughness length. It keeps eq. 10's u* = κU/ln(h/z0) finite and the default turbulence
     /// intensity 1/ln(h/z0) within [`WindConfig::MAX_TURBULENCE_INTENSITY`](crate::wind::WindConfig::MAX_TURBULENCE_INTENSITY).
     pub const MIN_LOG_RATIO: f32 = 0.1;
+}
+
+/// The mean wind: the fields of [`WindConfig`] that apply at once, without a rebuild (speed,
+/// direction, pulse). They are listed here only; everything else is the turbulence, which a
+/// change rebuilds ([`WindRebuild`](super::rebuild::WindRebuild)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct MeanWind {
+    pub(crate) reference_speed: f32,
+    pub(crate) direction: Vec2,
+    pub(crate) pulse: Pulse,
+}
+
+impl WindConfig {
+    /// Its mean wind.
+    pub(crate) fn mean(&self) -> MeanWind {
+        MeanWind {
+            reference_speed: self.reference_speed,
+            direction: self.direction,
+            pulse: self.pulse,
+        }
+    }
+
+    /// The same configuration with the mean wind `mean`.
+    pub(crate) fn with_mean(&self, mean: MeanWind) -> Self {
+        Self {
+            reference_speed: mean.reference_speed,
+            direction: mean.direction,
+            pulse: mean.pulse,
+            ..self.clone()
+        }
+    }
+
+    /// Whether `self` and `other` have the same turbulence (everything but the mean wind): the
+    /// same field, up to its mean wind.
+    pub(crate) fn same_turbulence(&self, other: &Self) -> bool {
+        *self == other.with_mean(self.mean())
+    }
 }

@@ -4,6 +4,10 @@
 use bevy::math::Vec2;
 use bevy::reflect::Reflect;
 
+use super::config::WindConfig;
+use super::error::WindError;
+use crate::error::InvalidValue;
+
 /// Where [`WindField::ease_to`](super::field::WindField::ease_to) is taking the mean wind and how fast
 /// it gets there ([`WindField::easing`](super::field::WindField::easing)), and how far it has come:
 /// the speed and direction it started from and the wind time since, so that each step is
@@ -50,21 +54,28 @@ impl WindEasing {
         }
     }
 
-    /// Takes `saved`'s τ and, if they are sound (finite, a unit direction, a time ≥ 0), where
-    /// it started and how long ago; otherwise this easing starts now.
-    pub(super) fn resume_from(&mut self, saved: &WindEasing) {
+    /// Takes `saved`'s τ and, if they are sound (a unit direction, a time ≥ 0), where it started
+    /// and how long ago; otherwise (an older snapshot without them) this easing starts now.
+    ///
+    /// # Errors
+    /// A start speed the wind may not have (not finite, negative, or above
+    /// [`WindConfig::MAX_REFERENCE_SPEED`]): it would be the reference speed after a step.
+    pub(super) fn resume_from(&mut self, saved: &WindEasing) -> Result<(), WindError> {
+        InvalidValue::check(
+            saved.from_speed.is_finite()
+                && (0.0..=WindConfig::MAX_REFERENCE_SPEED).contains(&saved.from_speed),
+            "easing.from_speed",
+            saved.from_speed,
+            "must be finite, ≥ 0 and ≤ 1e4 m/s",
+        )?;
         self.time_constant = saved.time_constant;
         let unit = (saved.from_direction.length_squared() - 1.0).abs() < 1e-3;
-        if saved.from_speed.is_finite()
-            && saved.from_speed >= 0.0
-            && unit
-            && saved.elapsed.is_finite()
-            && saved.elapsed >= 0.0
-        {
+        if unit && saved.elapsed.is_finite() && saved.elapsed >= 0.0 {
             self.from_speed = saved.from_speed;
             self.from_direction = saved.from_direction;
             self.elapsed = saved.elapsed;
         }
+        Ok(())
     }
 
     /// Advances the easing by `dt` wind seconds: speed and direction are the fraction

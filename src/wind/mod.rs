@@ -29,7 +29,6 @@ mod settings;
 mod shelter;
 mod snapshot;
 mod source;
-mod sync;
 
 pub use config::{SpatialMode, TemporalMode, WindConfig};
 pub use ease::WindEasing;

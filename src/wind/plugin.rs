@@ -9,12 +9,10 @@ use bevy::time::Time;
 use super::config::WindConfig;
 use super::field::WindField;
 use super::placement::{anything_to_place, check_shelter, place_wind_sources, restart_source};
-use super::rebuild::WindRebuild;
-use super::rebuild::WindRebuilt;
-use super::settings::WindSettings;
+use super::rebuild::{WindRebuild, WindRebuilt, land_wind_rebuild};
+use super::settings::{WindSettings, field_inserted, take_in_wind_settings};
 use super::shelter::{ShelterKind, WindShelter, WindShelterInvalid};
 use super::source::{SourceShape, WindSource, WindSourceInvalid};
-use super::sync::{apply_wind_settings, land_wind_rebuild};
 use crate::schedule::WindfallSystems;
 
 /// Adds wind to an app: inserts a [`WindField`] built from `config` (unless the app already has
@@ -79,12 +77,15 @@ impl Plugin for WindPlugin {
             .register_type::<WindShelter>()
             .register_type::<WindShelterInvalid>()
             .register_type::<ShelterKind>()
+            .add_observer(field_inserted)
             .add_observer(restart_source)
             .add_observer(check_shelter)
             .add_message::<WindRebuilt>()
             .add_systems(
                 RunFixedMainLoop,
-                apply_wind_settings.in_set(WindfallSystems::Prepare),
+                take_in_wind_settings
+                    .run_if(resource_exists_and_changed::<WindSettings>)
+                    .in_set(WindfallSystems::Prepare),
             )
             .add_systems(
                 schedule,
@@ -115,7 +116,11 @@ impl Plugin for WindPlugin {
         if let Some(config) = live
             && !app.world().contains_resource::<WindSettings>()
         {
-            app.insert_resource(WindSettings::new(config));
+            app.insert_resource(WindSettings::new(config.clone()));
+            // The field has taken these in: a later edit applies what differs from them.
+            if let Some(mut field) = app.world_mut().get_resource_mut::<WindField>() {
+                field.taken_in.get_or_insert(config);
+            }
         }
     }
 }

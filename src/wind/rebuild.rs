@@ -3,27 +3,24 @@
 //! the request, so two runs of a game land it at the same step whatever the machine.
 
 use bevy::ecs::prelude::*;
-use bevy::math::Vec2;
-use bevy::tasks::{AsyncComputeTaskPool, Task, TaskPool};
+use bevy::log::info;
+use bevy::tasks::{AsyncComputeTaskPool, Task, TaskPool, block_on, futures::check_ready};
 
 use super::config::WindConfig;
 use super::error::WindError;
-use super::field::{WindField, next_generation};
-use super::pulse::Pulse;
+use super::field::WindField;
 
-/// A [`WindField`] being synthesised on the [`AsyncComputeTaskPool`]. Insert one (or edit
-/// [`WindSettings`](super::settings::WindSettings), which starts one for you); [`WindPlugin`](super::plugin::WindPlugin) swaps the new
-/// field in exactly [`WindRebuild::steps`] fixed steps later, waiting for the synthesis at that
-/// step if it is late, so the swap happens at the same step on every machine (replays and
-/// lockstep multiplayer need that). The new field keeps the old one's clock, and [`WindRebuilt`]
-/// is sent. Until then the old field keeps blowing.
+/// A [`WindField`] being synthesised on the [`AsyncComputeTaskPool`]: new turbulence. Editing
+/// the turbulence in [`WindSettings`](super::settings::WindSettings) starts one for you, or
+/// insert one; [`WindPlugin`](super::plugin::WindPlugin) swaps the new turbulence in exactly
+/// [`WindRebuild::steps`] fixed steps later, waiting for the synthesis at that step if it is late,
+/// so the swap happens at the same step on every machine (replays and lockstep multiplayer need
+/// that), and sends [`WindRebuilt`]. Until then the old field keeps blowing.
 ///
-/// The mean speed, direction and [`Pulse`] are merged three ways: each one that was changed on
-/// the live field while the rebuild was building (directly or through the settings) keeps its
-/// new value; each one nobody changed takes the rebuild's own. Inserting another `WindRebuild`
-/// replaces the one in flight. The later request wins between a rebuild and a [`WindField`]
-/// inserted by hand: a field made ([`WindField::new`]) after the rebuild was started wins, and
-/// the rebuild is dropped; a field made before it is replaced when the rebuild lands.
+/// A rebuild replaces the turbulence only: the field goes on with its own clock, easing and mean
+/// wind (speed, direction, pulse), whatever was set while it built. Inserting another
+/// `WindRebuild` replaces the one in flight; a [`WindField`] inserted after a rebuild (a new
+/// one, a clone put back, one from a snapshot) wins, and the rebuild is dropped.
 ///
 /// In a browser (wasm32) the synthesis cannot be waited for, so a late one lands at the first
 /// step after it is ready.
@@ -42,22 +39,31 @@ use super::pulse::Pulse;
 #[derive(Resource)]
 pub struct WindRebuild {
     config: WindConfig,
-    pub(super) task: Option<Task<WindField>>,
-    /// The field being replaced and its mean wind then, once known (a different field at
-    /// landing: dropped).
-    pub(super) replaces: Option<(u64, Mean)>,
-    /// The generation the next [`WindField::new`] would have had when this was requested: a
-    /// live field of this generation or later was made after the request.
-    pub(super) requested: u64,
-    pub(super) steps: u32,
-    pub(super) elapsed: u32,
+    task: Option<Task<WindField>>,
+    steps: u32,
+    elapsed: u32,
+    /// Set when a [`WindField`] is inserted after this was: the field wins.
+    pub(super) superseded: bool,
 }
 
 impl WindRebuild {
     /// Validates `config` now (a bad field is reported here, by name) and starts the synthesis;
-    /// it lands after [`WindRebuild::DEFAULT_STEPS`](crate::wind::WindRebuild::DEFAULT_STEPS) fixed steps.
+    /// it lands after [`WindRebuild::DEFAULT_STEPS`] fixed steps.
     pub fn start(config: WindConfig) -> Result<Self, WindError> {
-        start_rebuild(config, None)
+        config.validate()?;
+        let pool = AsyncComputeTaskPool::get_or_init(TaskPool::default);
+        let job = config.clone();
+        let task = pool.spawn(async move {
+            // Validated above, and `new` checks nothing more that could fail.
+            WindField::new(job).expect("validated configuration")
+        });
+        Ok(Self {
+            config,
+            task: Some(task),
+            steps: Self::DEFAULT_STEPS,
+            elapsed: 0,
+            superseded: false,
+        })
     }
 
     /// The same, landing after `steps` fixed steps (at least 1).
@@ -82,92 +88,52 @@ impl WindRebuild {
     }
 }
 
-/// [`WindRebuild::start`], replacing `replaces` (its generation and mean wind now) if known.
-pub(crate) fn start_rebuild(
-    config: WindConfig,
-    replaces: Option<(u64, Mean)>,
-) -> Result<WindRebuild, WindError> {
-    let requested = next_generation();
-    config.validate()?;
-    let pool = AsyncComputeTaskPool::get_or_init(TaskPool::default);
-    let job = config.clone();
-    let task = pool.spawn(async move {
-        // Validated above, and `new` checks nothing more that could fail.
-        WindField::new(job).expect("validated configuration")
+/// Counts the [`WindRebuild`] in flight down by one fixed step; at its step, puts its turbulence
+/// in (waiting for it if it is late): the live field goes on with it ([`WindField`]'s clock,
+/// easing and mean wind kept), or it becomes the field if there is none. A rebuild superseded by
+/// an inserted field is dropped.
+pub(super) fn land_wind_rebuild(
+    mut commands: Commands,
+    mut rebuild: ResMut<WindRebuild>,
+    live: Option<ResMut<WindField>>,
+    mut rebuilt: MessageWriter<WindRebuilt>,
+) {
+    if rebuild.superseded {
+        info!("a WindField was inserted after a rebuild was requested: the rebuild is dropped");
+        commands.remove_resource::<WindRebuild>();
+        return;
+    }
+    rebuild.elapsed += 1;
+    if rebuild.elapsed < rebuild.steps {
+        return;
+    }
+    let Some(task) = rebuild.task.as_mut() else {
+        commands.remove_resource::<WindRebuild>();
+        return;
+    };
+    let mut field = if cfg!(target_arch = "wasm32") {
+        match check_ready(task) {
+            Some(field) => field,
+            None => return,
+        }
+    } else {
+        block_on(task)
+    };
+    rebuild.task = None;
+    match live {
+        Some(mut live) => {
+            field.carry_on_from(&live);
+            *live = field;
+        }
+        None => commands.insert_resource(field),
+    }
+    rebuilt.write(WindRebuilt {
+        config: rebuild.config.clone(),
     });
-    Ok(WindRebuild {
-        config,
-        task: Some(task),
-        replaces,
-        requested,
-        steps: WindRebuild::DEFAULT_STEPS,
-        elapsed: 0,
-    })
+    commands.remove_resource::<WindRebuild>();
 }
 
-/// What a rebuild merges: a field's mean speed, direction and pulse.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Mean {
-    speed: f32,
-    direction: Vec2,
-    pulse: Pulse,
-}
-
-impl Mean {
-    pub(crate) fn of(field: &WindField) -> Self {
-        let c = field.config();
-        Self {
-            speed: c.reference_speed,
-            direction: c.direction,
-            pulse: c.pulse,
-        }
-    }
-
-    /// The three-way merge: what `live` changed since `base` wins, `own` keeps the rest.
-    fn merge(base: Self, live: Self, own: Self) -> Self {
-        Self {
-            speed: if live.speed != base.speed {
-                live.speed
-            } else {
-                own.speed
-            },
-            direction: if live.direction != base.direction {
-                live.direction
-            } else {
-                own.direction
-            },
-            pulse: if live.pulse != base.pulse {
-                live.pulse
-            } else {
-                own.pulse
-            },
-        }
-    }
-}
-
-/// Gives the rebuilt `field` the clock of the `old` one and the merged mean wind (see
-/// [`WindRebuild`]); `base` is the old field's mean wind when the rebuild started.
-pub(super) fn hand_over(
-    field: &mut WindField,
-    old: &WindField,
-    base: Mean,
-) -> Result<(), WindError> {
-    let mean = Mean::merge(base, Mean::of(old), Mean::of(field));
-    let own = Mean::of(field);
-    if mean.speed != own.speed {
-        field.set_reference_speed(mean.speed)?;
-    }
-    if mean.direction != own.direction {
-        field.set_direction(mean.direction)?;
-    }
-    if mean.pulse != own.pulse {
-        field.set_pulse(mean.pulse)?;
-    }
-    field.continue_clock_of(old);
-    Ok(())
-}
-
-/// Sent when a [`WindRebuild`] has replaced the [`WindField`].
+/// Sent when a [`WindRebuild`] has put its turbulence into the [`WindField`].
 ///
 /// # Example
 ///
@@ -184,7 +150,8 @@ pub(super) fn hand_over(
 /// ```
 #[derive(Message, Clone, Debug)]
 pub struct WindRebuilt {
-    /// The configuration now in effect.
+    /// The configuration the rebuild built (the field's turbulence now; its mean wind is the
+    /// field's own, [`WindField::config`]).
     pub config: WindConfig,
 }
 

@@ -56,7 +56,7 @@ fn step_in<'a>(
         model,
         wind,
         dt,
-        tilt: tilt(),
+        wind_tilt: tilt().max_angle,
         focus: focus.map(Focus::from),
     }
 }

@@ -173,10 +173,10 @@ fn settings_apply_speed_at_once_and_the_rest_by_a_rebuild_that_keeps_later_edits
         "the direct edit is kept"
     );
     assert!((wind.direction() - Vec3::Z).length() < 1e-6);
-    assert_eq!(
-        app.world().resource::<WindSettings>().config,
-        *wind.config()
-    );
+    // Nothing writes into the settings: they hold what was set there.
+    let settings = app.world().resource::<WindSettings>();
+    assert_eq!(settings.reference_speed, 3.0);
+    assert_eq!((settings.beta, settings.seed), (3.0, 77));
 }
 
 #[test]
@@ -278,14 +278,18 @@ fn a_pulse_set_while_a_rebuild_builds_survives_its_landing() {
         let field = app.world().resource::<WindField>();
         assert_eq!(field.config().beta, 2.5, "direct: {direct}");
         assert_eq!(field.config().pulse, pulse, "direct: {direct}");
-        assert_eq!(app.world().resource::<WindSettings>().pulse, pulse);
+        // The settings hold what was set there, never what the field was set to directly.
+        let settings = app.world().resource::<WindSettings>().pulse;
+        let expected = if direct { Default::default() } else { pulse };
+        assert_eq!(settings, expected, "direct: {direct}");
     }
 }
 
 #[test]
-fn a_rebuild_lands_with_its_own_speed_and_direction_where_nobody_changed_them() {
+fn a_rebuild_replaces_the_turbulence_and_keeps_the_live_mean_wind() {
     use bevy_windfall::wind::WindRebuild;
     let mut app = settings_app();
+    // Its own speed and direction are not used: the field goes on with its mean wind.
     let next = WindConfig {
         reference_speed: 7.0,
         direction: Vec2::new(0.0, 1.0),
@@ -296,13 +300,12 @@ fn a_rebuild_lands_with_its_own_speed_and_direction_where_nobody_changed_them() 
     until_landed(&mut app);
     app.update();
     let field = app.world().resource::<WindField>();
-    assert_eq!(field.config().reference_speed, 7.0);
-    assert_eq!(field.config().direction, Vec2::new(0.0, 1.0));
-    assert_eq!(app.world().resource::<WindSettings>().reference_speed, 7.0);
-    // An edit made while it builds wins over the rebuild's own value; the rest is the rebuild's.
+    assert_eq!(field.config().beta, 3.0);
+    assert_eq!(field.config().reference_speed, config().reference_speed);
+    assert_eq!(field.config().direction, config().direction);
+    assert_eq!(app.world().resource::<WindSettings>().config, config());
+    // An edit of the live field made while it builds is kept when it lands.
     let next = WindConfig {
-        reference_speed: 3.0,
-        direction: Vec2::new(1.0, 0.0),
         beta: 2.0,
         ..config()
     };
@@ -315,8 +318,142 @@ fn a_rebuild_lands_with_its_own_speed_and_direction_where_nobody_changed_them() 
     until_landed(&mut app);
     let field = app.world().resource::<WindField>();
     assert_eq!(field.config().reference_speed, 11.0);
-    assert_eq!(field.config().direction, Vec2::new(1.0, 0.0));
     assert_eq!(field.config().beta, 2.0);
+}
+
+/// Hostile input, round 4, item 14: a rebuild inserted, then the live field's speed and
+/// direction set in the same frame: the later edits win when the rebuild lands.
+#[test]
+fn edits_of_the_field_after_a_rebuild_request_win_whatever_the_frame() {
+    use bevy_windfall::wind::WindRebuild;
+    let mut app = settings_app();
+    let job = WindRebuild::start(WindConfig {
+        beta: 3.0,
+        ..config()
+    })
+    .unwrap();
+    app.insert_resource(job);
+    {
+        let mut field = app.world_mut().resource_mut::<WindField>();
+        field.set_reference_speed(20.0).unwrap();
+        field.set_direction(Vec2::new(0.0, 1.0)).unwrap();
+    }
+    until_landed(&mut app);
+    let field = app.world().resource::<WindField>();
+    assert_eq!(field.config().beta, 3.0);
+    assert_eq!(field.config().reference_speed, 20.0);
+    assert!((field.direction() - Vec3::Z).length() < 1e-6);
+}
+
+/// Hostile input, round 4, item 7: a clone of the field (same generation) inserted five steps
+/// after a rebuild was requested wins over the rebuild.
+#[test]
+fn a_saved_field_put_back_after_a_rebuild_request_wins() {
+    let mut app = settings_app();
+    let saved = app.world().resource::<WindField>().clone();
+    app.world_mut().resource_mut::<WindSettings>().beta = 3.0;
+    for _ in 0..5 {
+        app.update();
+    }
+    assert!(
+        app.world()
+            .contains_resource::<bevy_windfall::wind::WindRebuild>()
+    );
+    app.insert_resource(saved);
+    for _ in 0..2 * bevy_windfall::wind::WindRebuild::DEFAULT_STEPS {
+        app.update();
+    }
+    assert!(
+        !app.world()
+            .contains_resource::<bevy_windfall::wind::WindRebuild>()
+    );
+    assert_eq!(
+        app.world().resource::<WindField>().config().beta,
+        config().beta
+    );
+}
+
+#[test]
+fn setting_the_turbulence_back_drops_the_rebuild_in_flight() {
+    let mut app = settings_app();
+    app.world_mut().resource_mut::<WindSettings>().seed = 99;
+    app.update();
+    assert!(
+        app.world()
+            .contains_resource::<bevy_windfall::wind::WindRebuild>()
+    );
+    app.world_mut().resource_mut::<WindSettings>().seed = config().seed;
+    app.update();
+    assert!(
+        !app.world()
+            .contains_resource::<bevy_windfall::wind::WindRebuild>()
+    );
+    for _ in 0..40 {
+        app.update();
+    }
+    assert_eq!(
+        app.world().resource::<WindField>().config().seed,
+        config().seed
+    );
+}
+
+#[test]
+fn a_pulse_edit_in_the_settings_keeps_an_easing() {
+    let mut app = settings_app();
+    app.world_mut()
+        .resource_mut::<WindField>()
+        .ease_to(12.0, Vec2::new(0.0, 1.0), 2.0)
+        .unwrap();
+    app.update();
+    app.world_mut().resource_mut::<WindSettings>().pulse =
+        bevy_windfall::wind::Pulse::new(0.3, 0.5);
+    app.update();
+    let field = app.world().resource::<WindField>();
+    assert!(field.easing().is_some(), "the easing goes on");
+    assert_eq!(
+        field.config().pulse,
+        bevy_windfall::wind::Pulse::new(0.3, 0.5)
+    );
+    // A speed edit in the settings ends it.
+    app.world_mut()
+        .resource_mut::<WindSettings>()
+        .reference_speed = 6.0;
+    app.update();
+    let field = app.world().resource::<WindField>();
+    assert!(field.easing().is_none());
+    assert_eq!(field.config().reference_speed, 6.0);
+}
+
+#[test]
+fn a_field_inserted_with_a_settings_edit_in_the_same_frame_takes_the_edit() {
+    let mut app = settings_app();
+    let mine = WindField::new(WindConfig {
+        seed: 1234,
+        ..config()
+    })
+    .unwrap();
+    app.insert_resource(mine);
+    app.world_mut()
+        .resource_mut::<WindSettings>()
+        .reference_speed = 8.0;
+    app.update();
+    let field = app.world().resource::<WindField>();
+    assert_eq!(field.config().seed, 1234, "the inserted field blows");
+    assert_eq!(field.config().reference_speed, 8.0, "with the edit");
+}
+
+#[test]
+fn settings_inserted_again_apply_what_differs() {
+    let mut app = settings_app();
+    app.insert_resource(WindSettings::new(WindConfig {
+        reference_speed: 2.0,
+        ..config()
+    }));
+    app.update();
+    assert_eq!(
+        app.world().resource::<WindField>().config().reference_speed,
+        2.0
+    );
 }
 
 #[test]

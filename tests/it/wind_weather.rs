@@ -256,7 +256,8 @@ fn a_pulse_set_in_the_settings_applies_at_once_without_a_rebuild() {
         app.world().resource::<WindField>().config().pulse,
         Pulse::new(0.3, 0.5)
     );
-    // A bad one is refused and the settings go back.
+    // A bad one is refused (the wind keeps its pulse); the settings keep what was set, and
+    // the next good value applies.
     app.world_mut().resource_mut::<WindSettings>().pulse = Pulse::new(2.0, 0.5);
     app.update();
     assert_eq!(
@@ -265,6 +266,12 @@ fn a_pulse_set_in_the_settings_applies_at_once_without_a_rebuild() {
     );
     assert_eq!(
         app.world().resource::<WindSettings>().pulse,
-        Pulse::new(0.3, 0.5)
+        Pulse::new(2.0, 0.5)
+    );
+    app.world_mut().resource_mut::<WindSettings>().pulse = Pulse::new(0.8, 0.5);
+    app.update();
+    assert_eq!(
+        app.world().resource::<WindField>().config().pulse,
+        Pulse::new(0.8, 0.5)
     );
 }

@@ -60,8 +60,9 @@ pub struct CloudStep<'a> {
     pub wind: Option<&'a WindField>,
     /// The fixed step, s.
     pub dt: f32,
-    /// The wind's turn of eq. 15.
-    pub tilt: WindTilt,
+    /// W, the largest angle the wind turns a leaf by (eq. 15), rad; the wind's reference speed
+    /// is read from `wind` ([`WindTilt::in_wind`]).
+    pub wind_tilt: f32,
     /// Where the levels of detail are measured from (the camera, and what it sees);
     /// `None`: every leaf at full detail.
     pub focus: Option<Focus>,
@@ -179,6 +180,7 @@ impl CloudLeaves {
         self.clock.tick(dt);
         let ctx = ChunkContext {
             step,
+            tilt: WindTilt::in_wind(step.wind_tilt, step.wind),
             clock: self.clock,
             lod: self.lod,
             recycle_after: self.recycle_after,
@@ -309,6 +311,7 @@ impl CloudLeaves {
 /// What the chunks of one step share.
 struct ChunkContext<'a> {
     step: &'a CloudStep<'a>,
+    tilt: WindTilt,
     clock: FallClock,
     lod: LodTiers,
     recycle_after: Option<f32>,
@@ -348,7 +351,7 @@ fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkRepo
             ctx.clock.seconds,
             next,
             wind,
-            &step.tilt,
+            &ctx.tilt,
         );
         report.advanced += 1;
         match outcome {

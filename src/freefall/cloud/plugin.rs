@@ -11,7 +11,6 @@ use super::leaves::{CloudLeaves, CloudStep, CloudStepReport, LeafPose};
 use super::{CloudRegion, LeafCloud, LeafCloudInvalid};
 use crate::freefall::model::FallModel;
 use crate::freefall::model::error::FallError;
-use crate::freefall::model::path::WindTilt;
 use crate::freefall::object::FallSettings;
 use crate::lifecycle::Described;
 use crate::lod::{LodFocus, LodTiers};
@@ -141,17 +140,13 @@ fn step_clouds(
         return;
     };
     let focus = crate::lod::focus(&foci);
-    let reference_speed = wind.as_deref().map_or(1.0, |w| w.config().reference_speed);
     let pool = ComputeTaskPool::try_get().map(|p| &**p);
     for (cloud, mut state) in &mut clouds {
         let step = CloudStep {
             model: &model,
             wind: wind.as_deref(),
             dt: time.delta_secs(),
-            tilt: WindTilt {
-                max_angle: cloud.object.wind_tilt,
-                reference_speed,
-            },
+            wind_tilt: cloud.object.wind_tilt,
             focus,
         };
         let state = &mut *state;

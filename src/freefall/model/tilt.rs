@@ -5,6 +5,7 @@ use std::f32::consts::PI;
 use bevy::math::{Quat, Vec3};
 
 use super::series::sin_cos_small;
+use crate::wind::WindField;
 
 /// How the wind turns the object (eq. 15): θ = W N(t), leaning downwind. The paper's N(t) is
 /// the fBm wind speed |u|; as an angle factor it must be bounded, so N = x / (1 + x) with
@@ -19,6 +20,15 @@ pub struct WindTilt {
 }
 
 impl WindTilt {
+    /// The tilt of largest angle `max_angle` (W, rad) in `wind`: its reference speed is the
+    /// wind's own (1 m/s in still air, where nothing tilts).
+    pub fn in_wind(max_angle: f32, wind: Option<&WindField>) -> Self {
+        Self {
+            max_angle,
+            reference_speed: wind.map_or(1.0, |w| w.config().reference_speed),
+        }
+    }
+
     /// The rotation that leans the object downwind.
     pub fn rotation(&self, wind: Vec3) -> Quat {
         self.scaled_rotation(wind, 1.0)

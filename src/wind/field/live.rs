@@ -3,36 +3,35 @@
 
 use bevy::math::{DVec2, Vec2};
 
-use super::super::config::WindConfig;
+use super::super::config::MeanWind;
 use super::super::ease::WindEasing;
 use super::super::error::WindError;
 use super::super::pulse::Pulse;
 use super::WindField;
 use crate::error::InvalidValue;
 
+/// The field's own setters: for a field used without ECS (a server's, a tool's, a test's). In an
+/// app, edit [`WindSettings`](crate::wind::WindSettings) instead: the plugin applies it.
 impl WindField {
     /// Changes the mean speed at the reference height at once, keeping the turbulence pattern
     /// (and ending any [`Self::ease_to`]).
     pub fn set_reference_speed(&mut self, speed: f32) -> Result<(), WindError> {
-        self.set_mean(|c| c.reference_speed = speed)
+        self.set_mean(MeanWind {
+            reference_speed: speed,
+            ..self.config.mean()
+        })?;
+        self.ease = None;
+        Ok(())
     }
 
     /// Changes the horizontal direction (x, z) of the mean wind at once, keeping the pattern
     /// (and ending any [`Self::ease_to`]).
     pub fn set_direction(&mut self, direction: Vec2) -> Result<(), WindError> {
-        self.set_mean(|c| c.direction = direction)
-    }
-
-    /// Applies `edit` to the mean wind if the result is valid: the pattern's travel so far is
-    /// booked at the old speed and direction, any easing ends.
-    fn set_mean(&mut self, edit: impl FnOnce(&mut WindConfig)) -> Result<(), WindError> {
-        let mut config = self.config.clone();
-        edit(&mut config);
-        config.validate()?;
-        self.rebase_drift();
-        self.config = config;
+        self.set_mean(MeanWind {
+            direction,
+            ..self.config.mean()
+        })?;
         self.ease = None;
-        self.derive();
         Ok(())
     }
 
@@ -41,9 +40,39 @@ impl WindField {
     /// # Errors
     /// A magnitude outside [0, 1] or a frequency outside [0, 100] Hz, named.
     pub fn set_pulse(&mut self, pulse: Pulse) -> Result<(), WindError> {
-        pulse.validate()?;
-        self.config.pulse = pulse;
+        self.set_mean(MeanWind {
+            pulse,
+            ..self.config.mean()
+        })
+    }
+
+    /// Sets the mean wind if it is valid: a new speed or direction books the pattern's travel so
+    /// far at the old ones and ends any easing; a new pulse alone changes only the pulse.
+    pub(in crate::wind) fn set_mean(&mut self, mean: MeanWind) -> Result<(), WindError> {
+        let now = self.config.mean();
+        if mean == now {
+            return Ok(());
+        }
+        let config = self.config.with_mean(mean);
+        config.validate()?;
+        if (mean.reference_speed, mean.direction) != (now.reference_speed, now.direction) {
+            self.rebase_drift();
+            self.ease = None;
+        }
+        self.config = config;
+        self.derive();
         Ok(())
+    }
+
+    /// Goes on from `old` with this field's turbulence: `old`'s clock, its pattern's travel,
+    /// easing, mean wind and the settings it took in (what a [`WindRebuild`] does when it lands).
+    ///
+    /// [`WindRebuild`]: crate::wind::WindRebuild
+    pub(in crate::wind) fn carry_on_from(&mut self, old: &WindField) {
+        self.continue_clock_of(old);
+        self.config = self.config.with_mean(old.config.mean());
+        self.taken_in.clone_from(&old.taken_in);
+        self.derive();
     }
 
     /// Books the pattern's travel so far at the current speed and direction, before they change.
@@ -107,7 +136,7 @@ impl WindField {
         )?;
         // ease_to with τ > 0 changes nothing yet; keep the exact τ and the progress.
         if let Some(ease) = self.ease.as_mut() {
-            ease.resume_from(saved);
+            ease.resume_from(saved)?;
         }
         debug_assert_eq!(
             (speed_now, direction_now),
@@ -198,6 +227,7 @@ fn check_time_constant(time_constant: f32) -> Result<(), WindError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::wind::WindConfig;
 
     #[test]
     fn a_rebuilt_field_goes_on_from_where_the_pattern_was() {

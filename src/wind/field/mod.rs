@@ -88,6 +88,10 @@ pub struct WindField {
     pub(super) drift_base: DVec2,
     /// Wind time of the last change of the mean speed or direction.
     pub(super) drift_since: f64,
+    /// The [`WindSettings`](super::WindSettings) as this field last took them in: a settings
+    /// edit applies what differs from these, field by field. `None` until the field is
+    /// inserted into an app (then the app's settings, if any).
+    pub(in crate::wind) taken_in: Option<WindConfig>,
 }
 
 mod live;
@@ -95,11 +99,6 @@ mod read;
 
 /// Numbers the fields made by [`WindField::new`].
 static GENERATIONS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
-
-/// The generation the next [`WindField::new`] will have: fields made later have this or more.
-pub(crate) fn next_generation() -> u64 {
-    GENERATIONS.load(std::sync::atomic::Ordering::Relaxed)
-}
 
 impl WindField {
     /// Builds the field: validates `config`, then synthesises the three turbulence components
@@ -157,13 +156,14 @@ impl WindField {
             step_start: 0.0,
             drift_base: DVec2::ZERO,
             drift_since: 0.0,
+            taken_in: None,
         };
         field.derive();
         Ok(field)
     }
 
     /// Recomputes the quantities that follow from the configuration.
-    fn derive(&mut self) {
+    pub(super) fn derive(&mut self) {
         let c = &self.config;
         self.friction_velocity =
             profile::friction_velocity(c.reference_speed, c.reference_height, c.roughness);
