@@ -297,7 +297,13 @@ def run(browser, port, out, expected, args, say):
                 time.sleep(1)
                 page_png("page_notice.png")
             say("done: %s" % (", ".join(done) or "the notice is shown"))
-            return verdict(states, errors, args, say)
+            log = evaluate("JSON.stringify(window.loadingLog.map(e => e.shown))", timeout=10)
+            say("the indicator showed, in order: %s" % log)
+            try:
+                shown = json.loads(log)
+            except ValueError:
+                shown = []
+            return verdict(shown, errors, say)
         if now >= deadline:
             say("FAIL: timeout after %ss; missing %s (have %s); page title %r" % (
                 args.timeout, ", ".join(n for n in expected if n not in done),
@@ -313,15 +319,16 @@ def run(browser, port, out, expected, args, say):
                 return 1
 
 
-def verdict(states, errors, args, say):
-    """The page's checks once the run is done: the loading indicator showed the download and
-    the shaders compiling before the first frame, then gave way to the scene; no console errors."""
+def verdict(shown, errors, say):
+    """The page's checks once the run is done: the loading indicator (as the page recorded it,
+    `window.loadingLog`) showed the download and the shaders compiling before the first frame,
+    then gave way to the scene; no console errors."""
     failures = list(errors)
-    first_drawn = next((i for i, s in enumerate(states) if s.startswith("drawing")), None)
-    before = states[:first_drawn]
-    if not any(s.startswith("loading: downloading") for s in before):
+    first_drawn = next((i for i, s in enumerate(shown) if s == "scene"), None)
+    before = shown[:first_drawn]
+    if "downloading" not in before:
         failures.append("the indicator never showed the download before the first frame")
-    if not any(s.startswith("loading: compiling") for s in before):
+    if "compiling" not in before:
         failures.append("the indicator never said it was compiling shaders before the first frame")
     if first_drawn is None:
         failures.append("the indicator never gave way to the scene")

@@ -3,7 +3,7 @@
 //! The flag streams downwind, turns with the wind, and hangs in calm air.
 //!
 //! Spawned with nothing but a `Cloth` and a `Transform`: `WindfallPlugins` gives it a mesh and
-//! a red fabric. Keys: ↑/↓ wind speed, ←/→ turn the wind.
+//! a red fabric. (Changing the wind as the game runs: the `wind_settings` example.)
 //!
 //! `cargo run --example flag`
 
@@ -23,7 +23,6 @@ fn main() {
         .add_plugins(common::ScreenshotPlugin)
         .insert_resource(ClearColor(Color::srgb(0.62, 0.76, 0.90)))
         .add_systems(Startup, setup)
-        .add_systems(Update, steer_the_wind)
         .run();
 }
 
@@ -65,19 +64,4 @@ fn setup(
         },
         Transform::from_xyz(0.05, 5.95, 0.0),
     ));
-    commands.spawn(Text::new("Up/Down: wind speed   Left/Right: turn the wind"));
-}
-
-/// ↑/↓ change the mean wind's speed by 1 m/s, ←/→ turn it by 15°: the app's wind is set in
-/// [`WindSettings`] (applied at the next fixed step; a bad value is warned about by name).
-fn steer_the_wind(keys: Res<ButtonInput<KeyCode>>, mut wind: ResMut<WindSettings>) {
-    if keys.just_pressed(KeyCode::ArrowUp) {
-        wind.reference_speed += 1.0;
-    } else if keys.just_pressed(KeyCode::ArrowDown) {
-        wind.reference_speed = (wind.reference_speed - 1.0).max(0.0);
-    } else if keys.just_pressed(KeyCode::ArrowLeft) {
-        wind.direction = Vec2::from_angle(15f32.to_radians()).rotate(wind.direction);
-    } else if keys.just_pressed(KeyCode::ArrowRight) {
-        wind.direction = Vec2::from_angle(-15f32.to_radians()).rotate(wind.direction);
-    }
 }

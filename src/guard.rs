@@ -103,12 +103,16 @@ pub(crate) fn check_affine(
 /// The rotation `q` describes, normalised, or `None` for a non-finite or zero quaternion (which
 /// describes none).
 pub(crate) fn unit_quat(q: Quat) -> Option<Quat> {
-    let v = bevy::math::Vec4::from(q);
-    let largest = v.abs().max_element();
-    if !v.is_finite() || largest == 0.0 {
+    let v = bevy::math::Vec4::from(q).to_array();
+    let largest = v.iter().fold(0.0f32, |m, c| m.max(c.abs()));
+    if !v.iter().all(|c| c.is_finite()) || largest == 0.0 {
         return None;
     }
-    (v / largest).try_normalize().map(Quat::from_vec4)
+    // Scaled, then normalised, each sum in one order (glam's SIMD sums pairwise).
+    let [x, y, z, w] = v.map(|c| c / largest);
+    let length = (((x * x + y * y) + z * z) + w * w).sqrt();
+    let inv = 1.0 / length;
+    (inv.is_finite() && inv > 0.0).then(|| Quat::from_xyzw(x * inv, y * inv, z * inv, w * inv))
 }
 
 #[cfg(test)]

@@ -243,6 +243,7 @@ mod guard;
 pub mod inspector;
 mod lifecycle;
 pub mod lod;
+mod math;
 mod plugins;
 pub mod schedule;
 pub mod spectrum;

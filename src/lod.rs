@@ -222,9 +222,10 @@ impl LodView {
         if !valid {
             return Self { half_angle: PI };
         }
-        let tan_y = (0.5 * fov_y).tan();
-        // hypot, not sqrt(1 + a²): a huge aspect ratio must not overflow to ∞ (and 0 × ∞ to NaN).
-        let half_diagonal = (tan_y * 1.0f32.hypot(aspect_ratio)).atan();
+        // Portable libm (the tiers a leaf is stepped in follow from it); hypot, not
+        // sqrt(1 + a²): a huge aspect ratio must not overflow to ∞ (and 0 × ∞ to NaN).
+        let tan_y = libm::tanf(0.5 * fov_y);
+        let half_diagonal = libm::atanf(tan_y * libm::hypotf(1.0, aspect_ratio));
         Self {
             half_angle: half_diagonal + Self::MARGIN,
         }
@@ -260,7 +261,7 @@ impl Focus {
         let cone = forward
             .try_normalize()
             .filter(|_| view.half_angle >= 0.0)
-            .map(|f| (f, view.half_angle.min(PI).cos()));
+            .map(|f| (f, libm::cosf(view.half_angle.min(PI))));
         Self {
             position,
             view: cone,

@@ -1,8 +1,8 @@
 #!/bin/sh
 # The showcase for the browser: `web/build.sh [webgl2|webgpu]` builds it into target/web/BACKEND
-# (index.html, showcase.js, showcase_bg.wasm, and a .gz of each big file), a static folder:
+# (index.html, showcase.js, showcase_bg.wasm, and a .br and .gz of each big file), a static folder:
 #   python3 web/serve.py target/web/webgl2        then open http://127.0.0.1:8000
-# (web/serve.py sends the .gz files to browsers that take them; any static server works.)
+# (web/serve.py sends the compressed files to browsers that take them; any static server works.)
 # webgl2 (the default) runs in every browser; webgpu needs a browser with WebGPU. Bevy picks its
 # backend at build time; the crate's shaders pick storage buffers or textures at run time
 # (`GpuLayout`). It installs what it needs when missing: the wasm32 target, wasm-bindgen-cli (the
@@ -65,10 +65,17 @@ before=$(wc -c <"$out/showcase_bg.wasm")
 mv "$out/opt.wasm" "$out/showcase_bg.wasm"
 bytes=$(wc -c <"$out/showcase_bg.wasm")
 sed "s/__WASM_BYTES__/$bytes/" web/index.html >"$out/index.html"
+# Compressed copies beside the originals: web/serve.py sends the smallest the browser takes
+# (brotli by Node.js's zlib, at its best quality; gzip everywhere).
 for file in showcase_bg.wasm showcase.js; do
     gzip -9 -k -f "$out/$file"
+    node -e 'const z = require("zlib"), fs = require("fs"), f = process.argv[1];
+        fs.writeFileSync(f + ".br", z.brotliCompressSync(fs.readFileSync(f), { params: {
+            [z.constants.BROTLI_PARAM_QUALITY]: 11, [z.constants.BROTLI_PARAM_LGWIN]: 24 } }));' \
+        "$out/$file"
 done
-packed=$(wc -c <"$out/showcase_bg.wasm.gz")
-echo "showcase_bg.wasm: $bytes bytes ($before before wasm-opt), $packed gzipped;" \
+gz=$(wc -c <"$out/showcase_bg.wasm.gz")
+br=$(wc -c <"$out/showcase_bg.wasm.br")
+echo "showcase_bg.wasm: $bytes bytes ($before before wasm-opt), $gz gzipped, $br brotli;" \
     "built in $(($(date +%s) - started)) s"
 ls -l "$out"

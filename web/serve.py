@@ -3,9 +3,9 @@
 
     python3 web/serve.py [DIR] [--port 8000]
 
-A file with a `.gz` beside it (build.sh writes `showcase_bg.wasm.gz` and `showcase.js.gz`) is sent
-as that, with `Content-Encoding: gzip`, to a browser that accepts it: a visitor downloads the
-compressed size. `.wasm` goes out as `application/wasm`, so browsers compile it as it arrives.
+A file with a `.br` or `.gz` beside it (build.sh writes both for `showcase_bg.wasm` and
+`showcase.js`) is sent as the smaller one the browser accepts (`Accept-Encoding`), with its
+`Content-Encoding`: a visitor downloads the compressed size. `.wasm` goes out as `application/wasm`, so browsers compile it as it arrives.
 Python's standard library only; `python3 -m http.server` works too, but sends the uncompressed
 files.
 """
@@ -22,14 +22,16 @@ class Handler(http.server.SimpleHTTPRequestHandler):
 
     def send_head(self):
         path = self.translate_path(self.path)
-        packed = path + ".gz"
-        accepts = "gzip" in self.headers.get("Accept-Encoding", "")
-        if not (accepts and os.path.isfile(path) and os.path.isfile(packed)):
+        accepts = self.headers.get("Accept-Encoding", "")
+        found = [(encoding, path + suffix) for encoding, suffix in (("br", ".br"), ("gzip", ".gz"))
+                 if encoding in accepts and os.path.isfile(path + suffix)]
+        if not (found and os.path.isfile(path)):
             return super().send_head()
+        encoding, packed = found[0]
         body = open(packed, "rb")
         self.send_response(200)
         self.send_header("Content-Type", self.guess_type(path))
-        self.send_header("Content-Encoding", "gzip")
+        self.send_header("Content-Encoding", encoding)
         self.send_header("Content-Length", str(os.fstat(body.fileno()).st_size))
         self.send_header("Vary", "Accept-Encoding")
         self.end_headers()

@@ -2,7 +2,7 @@
 //! has compiled and 64 frames (or `--frames N`) have been played on the [`RECORDED_FRAME`] clock,
 //! then exits; `--window WxH` sizes the window; `--msaa N` sets every camera's samples per
 //! pixel; `--frames N` alone exits after N frames. Each screenshot also checks that no on-screen
-//! text overlaps another or a panel ([`super::layout`]); an overlap makes the run fail.
+//! text overlaps another or a panel ([`CheckLayout`]); an overlap makes the run fail.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -19,8 +19,16 @@ use bevy::time::TimeUpdateStrategy;
 use bevy::window::WindowResolution;
 
 use super::args::{ExampleArgs, SceneOptions, refuse_unknown};
-use super::layout::{self, LayoutFailures};
 use super::page;
+
+/// Asks for a layout check now (the screenshot's name, for the log): the on-screen text may not
+/// overlap other text or a panel, or run out of the window.
+#[derive(Message, Clone, Debug)]
+pub struct CheckLayout(pub String);
+
+/// Screenshots whose layout check failed: the run then exits with an error.
+#[derive(Resource, Default, Debug)]
+pub struct LayoutFailures(pub u32);
 
 /// The game time one frame takes while recording. A software renderer takes 0.1–1.5 s a frame,
 /// and a clock that followed it would show each scene at a different moment on each run (a leaf
@@ -33,9 +41,13 @@ pub const RECORDED_FRAME: Duration = Duration::from_micros(62_500);
 /// [`Readiness::ready`], then this many frames (or `--frames`) of [`RECORDED_FRAME`] each.
 pub const DEFAULT_SCREENSHOT_FRAME: u32 = 64;
 
-/// Render pipelines still compiling, counted by the render world each frame.
+/// Render pipelines still compiling, counted by the render world each frame, and (in the
+/// top bit) whether any pipeline has been asked for at all.
 #[derive(Resource, Clone, Default)]
 struct PendingPipelines(Arc<AtomicUsize>);
+
+/// The bit of [`PendingPipelines`] set once the cache holds a pipeline.
+const ANY_PIPELINE: usize = 1 << (usize::BITS - 1);
 
 /// On a device without compute shaders (WebGL2, or WebGL2's limits natively) compute pipelines
 /// are not counted: Bevy queues one it cannot build (the sparse buffer update) again every frame,
@@ -59,7 +71,12 @@ fn count_pending_pipelines(
                 })
         })
         .count();
-    pending.0.store(waiting, Ordering::Relaxed);
+    let seen = if pipelines.is_empty() {
+        0
+    } else {
+        ANY_PIPELINE
+    };
+    pending.0.store(waiting | seen, Ordering::Relaxed);
 }
 
 /// Whether the renderer has caught up: no pipeline has been waiting for the last
@@ -67,6 +84,8 @@ fn count_pending_pipelines(
 /// take minutes.
 #[derive(Resource, Default)]
 pub struct Readiness {
+    /// Whether the renderer has been asked for any pipeline yet (none in the first frames).
+    pipelines_seen: bool,
     calm_frames: u32,
     /// Frames played since the renderer caught up (the recording clock runs in these only).
     played: u32,
@@ -81,9 +100,9 @@ impl Readiness {
         self.calm_frames >= Self::CALM
     }
 
-    /// True from the first frame drawn with no pipeline waiting.
+    /// True from the first frame drawn with every pipeline asked for compiled.
     pub fn drawing(&self) -> bool {
-        self.calm_frames > 0
+        self.pipelines_seen && self.calm_frames > 0
     }
 
     /// Frames played since [`Self::ready`] turned true (since the last [`Self::reset`]).
@@ -99,7 +118,9 @@ impl Readiness {
 }
 
 fn track_readiness(pending: Res<PendingPipelines>, mut readiness: ResMut<Readiness>) {
-    if pending.0.load(Ordering::Relaxed) == 0 {
+    let pending = pending.0.load(Ordering::Relaxed);
+    readiness.pipelines_seen |= pending & ANY_PIPELINE != 0;
+    if pending & !ANY_PIPELINE == 0 {
         readiness.calm_frames += 1;
     } else {
         readiness.calm_frames = 0;
@@ -160,7 +181,7 @@ impl Plugin for ScreenshotPlugin {
             .init_resource::<FrameCount>()
             .init_resource::<Readiness>()
             .init_resource::<LayoutFailures>()
-            .add_plugins(layout::plugin)
+            .add_message::<CheckLayout>()
             .add_systems(
                 PreStartup,
                 |args: Res<ExampleArgs>, scene: Res<SceneOptions>| refuse_unknown(&args, &scene),
@@ -170,6 +191,8 @@ impl Plugin for ScreenshotPlugin {
             .add_systems(Last, frames_and_screenshot);
         let pending = PendingPipelines::default();
         app.insert_resource(pending.clone());
+        #[cfg(not(target_arch = "wasm32"))]
+        app.add_plugins(super::layout::plugin);
         app.sub_app_mut(RenderApp)
             .insert_resource(pending)
             .add_systems(
@@ -233,7 +256,7 @@ fn frames_and_screenshot(
     readiness: Res<Readiness>,
     mut count: ResMut<FrameCount>,
     done: Query<(), With<ScreenshotDone>>,
-    mut check: MessageWriter<layout::CheckLayout>,
+    mut check: MessageWriter<CheckLayout>,
     failures: Res<LayoutFailures>,
     mut exit: MessageWriter<AppExit>,
 ) {
@@ -243,7 +266,7 @@ fn frames_and_screenshot(
         if readiness.played() >= at && !count.requested {
             count.requested = true;
             take_screenshot(&mut commands, path.clone());
-            check.write(layout::CheckLayout(path.display().to_string()));
+            check.write(CheckLayout(path.display().to_string()));
         }
         if !done.is_empty() {
             info!("screenshot saved to {}", path.display());

@@ -11,7 +11,8 @@ use bevy_windfall::freefall::FallGizmos;
 use bevy_windfall::freefall::{FallPreset, MarkovChain, PrimitiveMotion};
 use bevy_windfall::prelude::*;
 
-use super::{Scene, SceneInfo, common, place_camera};
+use super::text::SceneLabel;
+use super::{Scene, SceneInfo, place_camera};
 
 /// How far every object falls, m (the Fig. 15 objects from their own heights, shown scaled to
 /// this one), onto a shelf this high.
@@ -32,7 +33,7 @@ pub fn plugin(app: &mut App) {
         )
         .add_systems(
             Update,
-            (rest_and_drop, draw_trails, place_labels, show_info).run_if(in_state(Scene::Gallery)),
+            (rest_and_drop, draw_trails, show_info).run_if(in_state(Scene::Gallery)),
         );
 }
 
@@ -50,18 +51,6 @@ struct Exhibit {
 
 #[derive(Component)]
 struct Resting(Timer);
-
-/// A label that follows a point of the scene: its full text, and the short one shown on a small
-/// window (under [`WIDE`] logical pixels), where the full ones would run into each other.
-#[derive(Component)]
-struct Label {
-    at: Vec3,
-    full: String,
-    short: String,
-}
-
-/// The narrowest window, logical pixels, that shows the labels in full.
-const WIDE: f32 = 800.0;
 
 /// A chain that starts in `motion` and stays there.
 fn only(motion: PrimitiveMotion) -> MarkovChain {
@@ -99,7 +88,7 @@ fn setup(
     place_camera(
         &mut camera,
         Vec3::new(middle, 4.5, 10.6),
-        Vec3::new(middle, 3.3, 0.0),
+        Vec3::new(middle, 2.7, 0.0),
     );
     // Still air: the paper's §2–3 synthesis alone. Every object falls in its column's frame,
     // whose floor is the shelf.
@@ -254,46 +243,14 @@ fn setup(
 /// A label at `at` in the scene: `full` on a wide window, `short` on a small one.
 fn label(commands: &mut Commands, at: Vec3, full: String, short: &str, color: Color) {
     commands.spawn((
-        Label {
+        SceneLabel {
             at,
-            full: full.clone(),
+            full,
             short: short.to_string(),
-        },
-        Text::new(full),
-        TextFont::from_font_size(14.0),
-        common::FitText {
-            px: 14.0,
-            wrap: false,
-        },
-        TextColor(color),
-        TextLayout::justify(Justify::Center),
-        Node {
-            position_type: PositionType::Absolute,
-            ..default()
+            color,
         },
         DespawnOnExit(Scene::Gallery),
     ));
-}
-
-/// Labels follow their points of the scene on screen, in full or short by the window's width.
-fn place_labels(
-    camera: Single<(&Camera, &GlobalTransform), With<Camera3d>>,
-    window: Single<&Window>,
-    mut labels: Query<(&Label, &mut Node, &mut Text, &ComputedNode)>,
-) {
-    let (camera, view) = *camera;
-    let wide = window.width() >= WIDE;
-    for (label, mut node, mut text, computed) in &mut labels {
-        let shown = if wide { &label.full } else { &label.short };
-        if text.0 != *shown {
-            text.0.clone_from(shown);
-        }
-        if let Ok(p) = camera.world_to_viewport(view, label.at) {
-            let size = computed.size() * computed.inverse_scale_factor();
-            node.left = px(p.x - 0.5 * size.x);
-            node.top = px(p.y);
-        }
-    }
 }
 
 /// An object that lands rests a moment, then falls again from its release point.

@@ -29,6 +29,7 @@ mod leaves;
 #[cfg(feature = "egui")]
 mod panel;
 mod population;
+mod text;
 
 use std::path::PathBuf;
 
@@ -86,9 +87,6 @@ pub struct SceneInfo(pub String);
 #[derive(Component)]
 pub struct Featured;
 
-#[derive(Component)]
-struct Hud;
-
 /// `--tour DIR`: where the screenshots go and how far the tour is. Each scene is saved once
 /// every render pipeline it needs has compiled (software renderers show black frames until then,
 /// and the game's clock stands still) and 64 frames have been played.
@@ -122,7 +120,13 @@ fn main() {
     .add_plugins((FrameTimeDiagnosticsPlugin::default(), WindfallDebugPlugin))
     .insert_state(start)
     .init_resource::<SceneInfo>()
-    .add_plugins((leaves::plugin, coin::plugin, flag::plugin, gallery::plugin))
+    .add_plugins((
+        leaves::plugin,
+        coin::plugin,
+        flag::plugin,
+        gallery::plugin,
+        text::plugin,
+    ))
     .add_systems(Update, (switch_scene, toggle_gizmos, steer_wind, show_hud));
     if args.flag("--check-layout") {
         app.init_resource::<LayoutTour>()
@@ -158,7 +162,6 @@ fn main() {
     // The focus of the leaf clouds' levels of detail.
     app.world_mut()
         .spawn((Camera3d::default(), LodFocus, LodView::default()));
-    app.world_mut().spawn((Hud, common::info_text()));
     app.run();
 }
 
@@ -223,7 +226,7 @@ fn show_hud(
     info: Res<SceneInfo>,
     wind: Res<WindField>,
     diagnostics: Res<DiagnosticsStore>,
-    mut hud: Single<&mut Text, With<Hud>>,
+    mut hud: ResMut<text::Hud>,
 ) {
     let frame_ms = diagnostics
         .get(&FrameTimeDiagnosticsPlugin::FRAME_TIME)
@@ -245,8 +248,8 @@ fn tour(
     mut readiness: ResMut<common::Readiness>,
     done: Query<Entity, With<common::ScreenshotDone>>,
     mut next: ResMut<NextState<Scene>>,
-    mut check: MessageWriter<common::layout::CheckLayout>,
-    failures: Res<common::layout::LayoutFailures>,
+    mut check: MessageWriter<common::CheckLayout>,
+    failures: Res<common::LayoutFailures>,
     mut exit: MessageWriter<AppExit>,
 ) {
     tour.frames_in_scene += 1;
@@ -261,7 +264,7 @@ fn tour(
         tour.requested = true;
         let scene = Scene::ALL[tour.next];
         let path = tour.dir.join(format!("showcase_{}.png", scene.name()));
-        check.write(common::layout::CheckLayout(path.display().to_string()));
+        check.write(common::CheckLayout(path.display().to_string()));
         common::take_screenshot(&mut commands, path);
         // The clock stands still from the request until the next scene has compiled: the
         // screenshot's read-back takes a varying number of frames.
@@ -298,8 +301,8 @@ fn layout_tour(
     mut tour: ResMut<LayoutTour>,
     mut window: Single<&mut Window>,
     mut next: ResMut<NextState<Scene>>,
-    mut check: MessageWriter<common::layout::CheckLayout>,
-    failures: Res<common::layout::LayoutFailures>,
+    mut check: MessageWriter<common::CheckLayout>,
+    failures: Res<common::LayoutFailures>,
     mut exit: MessageWriter<AppExit>,
 ) {
     let Some(&(width, height)) = LAYOUT_SIZES.get(tour.step / Scene::ALL.len()) else {
@@ -313,7 +316,7 @@ fn layout_tour(
         next.set(scene);
     } else if tour.frames == LAYOUT_FRAMES {
         let name = format!("the {} scene at {width} x {height}", scene.name());
-        check.write(common::layout::CheckLayout(name));
+        check.write(common::CheckLayout(name));
     } else if tour.frames > LAYOUT_FRAMES {
         tour.step += 1;
         tour.frames = 0;

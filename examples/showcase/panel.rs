@@ -3,41 +3,14 @@
 //! featured leaf, the flag).
 
 use bevy::prelude::*;
-use bevy::window::PrimaryWindow;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
 use bevy_windfall::inspector::WindfallInspectorPlugin;
 
 use super::Scene;
-use super::common::Covered;
 
 pub fn plugin(app: &mut App) {
     app.add_plugins(WindfallInspectorPlugin)
-        .add_systems(EguiPrimaryContextPass, (report_panels, scene_buttons));
-}
-
-/// Tells the on-screen text where egui's windows are (as they were drawn last frame), in
-/// logical pixels, so that it wraps short of them and the layout check sees them.
-fn report_panels(
-    mut contexts: EguiContexts,
-    window: Single<&Window, With<PrimaryWindow>>,
-    mut covered: ResMut<Covered>,
-) -> Result {
-    let ctx = contexts.ctx_mut()?;
-    let to_logical = ctx.pixels_per_point() / window.scale_factor();
-    covered.0 = ctx.memory(|memory| {
-        memory
-            .areas()
-            .visible_layer_ids()
-            .into_iter()
-            .filter(|layer| layer.order == egui::Order::Middle)
-            .filter_map(|layer| memory.area_rect(layer.id))
-            .map(|r| {
-                let corner = |p: egui::Pos2| Vec2::new(p.x, p.y) * to_logical;
-                Rect::from_corners(corner(r.min), corner(r.max))
-            })
-            .collect()
-    });
-    Ok(())
+        .add_systems(EguiPrimaryContextPass, scene_buttons);
 }
 
 fn scene_buttons(

@@ -110,6 +110,11 @@ fn show_inspector(
         return Ok(());
     }
     let ctx = contexts.ctx_mut()?;
+    // Its first frames wait for the window's size (a web page's canvas is sized after the
+    // first frame): whether it starts open is decided once, on the real size.
+    if ctx.cumulative_pass_nr() < 3 {
+        return Ok(());
+    }
     // In the top-right corner of any window, also after it is resized; on a small one (a web
     // page's canvas, a laptop's split screen) narrower and folded to its title until opened.
     let screen = ctx.content_rect();

@@ -86,7 +86,7 @@ impl WindEasing {
     pub(super) fn step(&mut self, dt: f32) -> (f32, Vec2, bool) {
         self.elapsed += f64::from(dt.max(0.0));
         let decay = if self.time_constant > 0.0 {
-            (-self.elapsed / f64::from(self.time_constant)).exp()
+            libm::exp(-self.elapsed / f64::from(self.time_constant))
         } else {
             0.0
         };

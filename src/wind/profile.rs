@@ -57,14 +57,12 @@ pub(crate) fn log_ratio(height: f32, roughness: f32) -> f32 {
     }
 }
 
-/// The natural logarithm of the log law, in one place: the platform's `ln`. The pure-Rust
-/// `libm::logf` would give the same bits on every machine (glibc picks an FMA variant on some
-/// processors, which may differ in the last bit), but measured 13 % slower per wind read (519
-/// against 460 µs for 10 000 reads, `cargo bench --bench freefall -- wind_sampling_only`); see
-/// `docs/live.md` on what cross-platform bits rest on.
+/// The natural logarithm of the log law, in one place: the crate's portable `ln` (the same
+/// bits on every machine and in the browser, where glibc's `logf` may differ in the last bit;
+/// and the one the lanes of a batched read take).
 #[inline]
 pub(crate) fn ln(x: f32) -> f32 {
-    x.ln()
+    crate::math::kernels::ln(x)
 }
 
 #[cfg(test)]

@@ -93,7 +93,7 @@ impl Pulse {
         }
         // The phase modulo one period first, so a long clock keeps its precision.
         let cycles = (time * f64::from(f)).rem_euclid(1.0);
-        (1.0 + f64::from(m) * (TAU * cycles).sin()).max(0.0) as f32
+        (1.0 + f64::from(m) * libm::sin(TAU * cycles)).max(0.0) as f32
     }
 }
 

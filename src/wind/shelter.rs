@@ -2,6 +2,7 @@
 //! house) or inside them (a room).
 
 use super::local::{Placement, check_size, fade, size};
+use super::source::turn;
 use bevy::ecs::component::Component;
 use bevy::ecs::reflect::ReflectComponent;
 use bevy::math::{Quat, Vec3, Vec3A};
@@ -193,11 +194,11 @@ impl PlacedShelter {
     /// the unit vector `downwind`.
     pub(crate) fn factor(&self, p: Vec3A, downwind: Vec3) -> f32 {
         let d = p - self.origin;
-        let r2 = d.length_squared();
+        let r2 = Vec3::from(d).length_squared();
         if r2.is_nan() || r2 >= self.reach2 {
             return 1.0;
         }
-        let local = self.to_local * Vec3::from(d);
+        let local = turn(self.to_local, Vec3::from(d));
         // Distance outside the box (0 inside).
         let outside = (local.abs() - self.half).max(Vec3::ZERO).length();
         match self.kind {
@@ -209,7 +210,7 @@ impl PlacedShelter {
                 let height = 2.0 * self.half.y;
                 let length = (size(lee_heights) * height).max(f32::MIN_POSITIVE);
                 // Downwind and across, horizontally, in the box's frame.
-                let wind = self.to_local * downwind;
+                let wind = turn(self.to_local, downwind);
                 let wind = Vec3::new(wind.x, 0.0, wind.z).normalize_or_zero();
                 let side = Vec3::new(-wind.z, 0.0, wind.x);
                 // Half the box's extent along and across the wind.

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 /// README's quick start in a fresh project, `.ci/newcomer.py`). The showcase's leaves scene must
 /// also show its storm, its flag its red and its gallery the motions' trails (see
 /// [`showcase_reason`]); the examples what they are about (see [`content_reason`]).
-const EXPECTED: [&str; 15] = [
+const EXPECTED: [&str; 16] = [
     "showcase_leaves.png",
     "showcase_coin.png",
     "showcase_flag.png",
@@ -23,6 +23,7 @@ const EXPECTED: [&str; 15] = [
     "example_coin_in_water.png",
     "example_flag.png",
     "example_curtain.png",
+    "example_wind_settings.png",
     "example_wind_sources.png",
     "example_grass.png",
     "example_avian_body.png",
@@ -79,7 +80,14 @@ fn content_reason(name: &str, frame: &Frame) -> Option<String> {
             blue * 100.0
         ));
     }
-    if wants(&["falling_leaves", "leaf_cloud", "wind_sources", "newcomer"]) && specks < 0.3 {
+    if wants(&[
+        "falling_leaves",
+        "leaf_cloud",
+        "wind_settings",
+        "wind_sources",
+        "newcomer",
+    ]) && specks < 0.3
+    {
         missing.push(format!(
             "no leaves: {specks:.2} autumn specks per 1000 pixels (≥ 0.3)"
         ));

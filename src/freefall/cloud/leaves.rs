@@ -16,6 +16,7 @@ use crate::freefall::model::random::FallRng;
 use crate::freefall::model::release::FallRelease;
 use crate::lod::Focus;
 use crate::lod::LodTiers;
+use crate::math::geometry::{Q, V3};
 use crate::wind::WindField;
 
 /// One leaf: its fall and when it was last stepped.
@@ -148,10 +149,11 @@ impl CloudLeaves {
             position.y = max.y;
         }
         let axis = Vec3::new(rng.normal(), rng.normal(), rng.normal());
-        let rotation = Quat::from_axis_angle(
-            axis.try_normalize().unwrap_or(Vec3::Y),
+        let rotation = Q::from_axis_angle(
+            V3::of(axis.try_normalize().unwrap_or(Vec3::Y)),
             rng.uniform() * std::f32::consts::TAU,
-        );
+        )
+        .quat();
         FallPath::release(
             model,
             self.scales,

@@ -149,7 +149,7 @@ impl MarkovChain {
         let mut transitions = [[0.0f32; 6]; 6];
         for i in 0..6 {
             let stay = if dwell[i].is_finite() && dwell[i] > 0.0 {
-                (-MarkovChain::STEP_SECONDS / dwell[i]).exp()
+                libm::expf(-MarkovChain::STEP_SECONDS / dwell[i])
             } else if dwell[i] == f32::INFINITY {
                 1.0
             } else {
@@ -267,7 +267,7 @@ impl BoundedChain {
             1.0
         };
         let u = rng.uniform();
-        if u < stay.powf(steps) {
+        if u < libm::powf(stay, steps) {
             return current;
         }
         // Among the others, in proportion to p_ij: a uniform draw over the leaving share.

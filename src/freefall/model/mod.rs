@@ -17,7 +17,6 @@ pub(crate) mod piece;
 pub(crate) mod random;
 pub(crate) mod regime;
 pub(crate) mod release;
-pub(crate) mod series;
 pub(crate) mod tilt;
 
 use std::sync::Arc;

@@ -145,7 +145,7 @@ impl FallScales {
             1e-4
         };
         // log10 I* from 1e-3 (narrow swings) to 4e-2 (the tumbling boundary).
-        let t = ((inertia.log10() + 3.0) / 1.6).clamp(0.0, 1.0);
+        let t = ((libm::log10f(inertia) + 3.0) / 1.6).clamp(0.0, 1.0);
         [glide.abs() / unit, -PI, 0.6, 0.5 + 0.7 * t]
     }
 
@@ -224,7 +224,7 @@ pub fn next_glide(motion: PrimitiveMotion, previous: Glide, rng: &mut FallRng) -
         PrimitiveMotion::Tumbling => (previous, 1.0),
         PrimitiveMotion::Chaotic => {
             // σ = ln(10)/3: r = 10 is three standard deviations out.
-            let r = (rng.normal() * std::f32::consts::LN_10 / 3.0).exp();
+            let r = libm::expf(rng.normal() * std::f32::consts::LN_10 / 3.0);
             let glide = if rng.coin() {
                 previous
             } else {

@@ -55,7 +55,7 @@ impl TanabeKaneko {
 
     /// d/dt of `s`.
     pub fn derivative(&self, s: &OdeState) -> OdeState {
-        let (sin_t, cos_t) = s.theta.sin_cos();
+        let (sin_t, cos_t) = libm::sincos(s.theta);
         let (ap, aa) = (self.a_perp, self.a_par);
         let cross = (ap - aa) * sin_t * cos_t;
         let (lift_u, lift_v, torque) = self.lift_and_torque(s, sin_t, cos_t);
@@ -249,7 +249,7 @@ pub(crate) fn speed_limit(
     if damping > 0.0 {
         let terminal = g / damping;
         let relaxed = if v0 > terminal {
-            terminal + (v0 - terminal) * (-damping * h).exp()
+            terminal + (v0 - terminal) * libm::exp(-damping * h)
         } else {
             terminal
         };
@@ -323,7 +323,7 @@ impl OdeState {
 /// the lift turns the velocity by the angle it would turn it in `h` (so it does no work, as in
 /// the ODE), torque and gravity are explicit, and positions use the new velocities.
 fn semi_implicit(params: &TanabeKaneko, s: &OdeState, h: f64) -> OdeState {
-    let (sin_t, cos_t) = s.theta.sin_cos();
+    let (sin_t, cos_t) = libm::sincos(s.theta);
     let (ap, aa) = (params.a_perp.max(0.0), params.a_par.max(0.0));
     let (lift_u, lift_v, torque) = params.lift_and_torque(s, sin_t, cos_t);
     // Rotate (u, v) by h × (angular rate of the lift): (v × L) / V².
@@ -333,7 +333,7 @@ fn semi_implicit(params: &TanabeKaneko, s: &OdeState, h: f64) -> OdeState {
     } else {
         0.0
     };
-    let (sin_p, cos_p) = turn.sin_cos();
+    let (sin_p, cos_p) = libm::sincos(turn);
     let bu = cos_p * s.u - sin_p * s.v;
     let bv = sin_p * s.u + cos_p * s.v - h * params.gravity;
     // Solve (I + hD) (u', v') = (bu, bv).

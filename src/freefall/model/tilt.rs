@@ -1,10 +1,10 @@
 //! The wind's turn of a falling object (eq. 15).
 
-use std::f32::consts::PI;
-
 use bevy::math::{Quat, Vec3};
 
-use super::series::sin_cos_small;
+use crate::math::geometry::{Q, V3};
+use crate::math::kernels::{clamp, sin_cos};
+use crate::math::lane::Lane;
 use crate::wind::WindField;
 
 /// How the wind turns the object (eq. 15): θ = W N(t), leaning downwind. The paper's N(t) is
@@ -36,40 +36,29 @@ impl WindTilt {
 
     /// [`WindTilt::rotation`] with its angle times `factor` ∈ [0, 1].
     pub(crate) fn scaled_rotation(&self, wind: Vec3, factor: f32) -> Quat {
-        let (x, z) = (wind.x, wind.z);
-        let horizontal = (x * x + z * z).sqrt();
-        let speed = wind.length();
-        if !(horizontal > 1e-6 && speed.is_finite() && self.max_angle.is_finite()) {
-            return Quat::IDENTITY;
-        }
-        // N = x / (1 + x) with x = |u| / U_ref, as |u| / (U_ref + |u|): one division.
-        let n = speed / (self.reference_speed.max(1e-3) + speed);
-        let half = 0.5 * factor * self.max_angle.clamp(-PI, PI) * n;
-        // Axis Y × horizontal = (z, 0, −x) / |horizontal|.
-        let (sin, cos) = sin_cos_quarter_turn(half);
-        let k = sin / horizontal;
-        Quat::from_xyzw(z * k, 0.0, -x * k, cos)
+        wind_tilt(self.max_angle, self.reference_speed, V3::of(wind), factor).quat()
     }
 }
 
-/// sin and cos of |x| ≤ π/2 by their Taylor series to x¹⁰ (error < 4e-6): no range reduction
-/// and no library call on the per-object hot path.
-fn sin_cos_quarter_turn(x: f32) -> (f32, f32) {
-    if x.is_nan() || x.abs() > std::f32::consts::FRAC_PI_2 {
-        return sin_cos_small(x);
-    }
-    const S: [f32; 4] = [1.0 / 6.0, 1.0 / 120.0, 1.0 / 5040.0, 1.0 / 362_880.0];
-    const C: [f32; 5] = [
-        1.0 / 2.0,
-        1.0 / 24.0,
-        1.0 / 720.0,
-        1.0 / 40_320.0,
-        1.0 / 3_628_800.0,
-    ];
-    let x2 = x * x;
-    let sin = x * (1.0 - x2 * (S[0] - x2 * (S[1] - x2 * (S[2] - x2 * S[3]))));
-    let cos = 1.0 - x2 * (C[0] - x2 * (C[1] - x2 * (C[2] - x2 * (C[3] - x2 * C[4]))));
-    (sin, cos)
+/// Eq. 15's tilt of the orientation: θ = W N with N = |u| / (U_ref + |u|), leaning downwind,
+/// times `factor` (see [`WindTilt`]).
+pub(crate) fn wind_tilt<L: Lane>(max_angle: L, reference_speed: L, wind: V3<L>, factor: L) -> Q<L> {
+    let horizontal = (wind.x * wind.x + wind.z * wind.z).sqrt();
+    let speed = wind.length_squared().sqrt();
+    let pi = L::splat(std::f32::consts::PI);
+    let finite = |v: L| v.abs().lt(L::splat(f32::INFINITY));
+    let leans = L::and(
+        horizontal.gt(L::splat(1e-6)),
+        L::and(finite(speed), finite(max_angle)),
+    );
+    let floor = L::splat(1e-3);
+    let n = speed / (L::select(reference_speed.gt(floor), reference_speed, floor) + speed);
+    let half = L::splat(0.5) * factor * clamp(max_angle, -pi, pi) * n;
+    let (sin, cos) = sin_cos(half);
+    let k = sin / horizontal;
+    let zero = L::splat(0.0);
+    let tilt = Q::new(wind.z * k, zero, -(wind.x * k), cos);
+    Q::select(leans, tilt, Q::identity())
 }
 
 #[cfg(test)]
@@ -89,17 +78,5 @@ mod tests {
         assert!((q.length() - 1.0).abs() < 1e-5);
         assert_eq!(tilt.rotation(Vec3::ZERO), Quat::IDENTITY);
         assert_eq!(tilt.rotation(Vec3::NAN), Quat::IDENTITY);
-    }
-
-    #[test]
-    fn quarter_turn_series_is_accurate() {
-        for i in 0..=1000 {
-            let x = -PI / 2.0 + PI * i as f32 / 1000.0;
-            let (s, c) = sin_cos_quarter_turn(x);
-            assert!(
-                (s - x.sin()).abs() < 4e-6 && (c - x.cos()).abs() < 4e-6,
-                "{x}"
-            );
-        }
     }
 }

@@ -340,4 +340,4 @@ impl WindSource {
 mod check;
 mod placed;
 pub use check::WindSourceInvalid;
-pub(crate) use placed::PlacedSource;
+pub(crate) use placed::{PlacedSource, turn};

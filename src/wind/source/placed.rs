@@ -6,6 +6,8 @@ use bevy::math::{Quat, Vec3, Vec3A};
 use super::super::local::{Placement, fade};
 use super::super::pulse::Pulse;
 use super::{SourceShape, WindSource, finite};
+use crate::math::geometry::{Q, V3};
+use crate::math::kernels::acos;
 
 /// 1 up to `inner`, then fading smoothly to 0 at `outer`.
 fn plateau(x: f32, inner: f32, outer: f32) -> f32 {
@@ -78,7 +80,7 @@ impl PlacedSource {
     #[inline]
     pub(crate) fn velocity(&self, p: Vec3A, time: f64) -> Vec3 {
         let d = p - self.origin;
-        let r2 = d.length_squared();
+        let r2 = Vec3::from(d).length_squared();
         if r2.is_nan() || r2 >= self.reach2 {
             return Vec3::ZERO;
         }
@@ -103,12 +105,12 @@ impl PlacedSource {
                 half_angle,
                 speed,
             } => {
-                let forward = self.to_world * Vec3::NEG_Z;
+                let forward = turn(self.to_world, Vec3::NEG_Z);
                 let along = d.dot(forward);
                 if along <= 0.0 || r == 0.0 {
                     return Vec3::ZERO;
                 }
-                let angle = (along / r).min(1.0).acos();
+                let angle = acos((along / r).min(1.0));
                 if angle >= half_angle {
                     return Vec3::ZERO;
                 }
@@ -120,7 +122,7 @@ impl PlacedSource {
                 peak_speed,
                 updraft,
             } => {
-                let local = self.to_local * d;
+                let local = turn(self.to_local, d);
                 let horizontal = (local.x * local.x + local.z * local.z).sqrt();
                 let envelope = plateau(r, 0.5 * radius, radius);
                 let core = 0.2 * radius;
@@ -137,7 +139,10 @@ impl PlacedSource {
                     Vec3::ZERO
                 };
                 let lift = updraft * fade(horizontal / radius.max(f32::MIN_POSITIVE));
-                self.to_world * (tangent * (peak_speed * swirl) + Vec3::Y * lift) * envelope
+                turn(
+                    self.to_world,
+                    tangent * (peak_speed * swirl) + Vec3::Y * lift,
+                ) * envelope
             }
             SourceShape::Blast {
                 peak_speed,
@@ -165,7 +170,7 @@ impl PlacedSource {
                 range,
             } => {
                 let age = time - self.start;
-                let local = self.to_local * d;
+                let local = turn(self.to_local, d);
                 let along = -local.z;
                 if age < 0.0 || along < 0.0 || along > range {
                     return Vec3::ZERO;
@@ -176,11 +181,17 @@ impl PlacedSource {
                     return Vec3::ZERO;
                 }
                 let s = 2.0 * behind / width.max(f32::MIN_POSITIVE) - 1.0;
-                let across = local.x.hypot(local.y) / (0.5 * range);
-                self.to_world * Vec3::NEG_Z * (strength * fade(s) * fade(across))
+                let across = (local.x * local.x + local.y * local.y).sqrt() / (0.5 * range);
+                turn(self.to_world, Vec3::NEG_Z) * (strength * fade(s) * fade(across))
             }
         }
     }
+}
+
+/// `v` turned by the unit quaternion `q`, in portable arithmetic (glam's quaternion product
+/// sums its terms in another order with SIMD than without).
+pub(crate) fn turn(q: Quat, v: Vec3) -> Vec3 {
+    Q::of(q).rotate(V3::of(v)).vec3()
 }
 
 #[cfg(test)]

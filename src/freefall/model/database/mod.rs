@@ -168,7 +168,7 @@ impl TrajectoryDatabase {
             // A gentle rocking of ±0.3 rad if no lift flutters.
             profiles.push(std::array::from_fn(|i| {
                 let s = i as f32 / (SEGMENT_SAMPLES - 1) as f32;
-                -0.3 * (std::f32::consts::PI * s).cos()
+                -0.3 * libm::cosf(std::f32::consts::PI * s)
             }));
         }
         let mut segments = Vec::with_capacity(alphas.len() * gammas.len() * profiles.len());

@@ -13,7 +13,12 @@ pub(super) fn harmonic_segment(
     gamma: f32,
     flutter: &[f32; SEGMENT_SAMPLES],
 ) -> Segment {
-    let at = |tau: f32| Vec2::new(-alpha * tau.sin(), -tau - 0.5 * gamma * (2.0 * tau).cos());
+    let at = |tau: f32| {
+        Vec2::new(
+            -alpha * libm::sinf(tau),
+            -tau - 0.5 * gamma * libm::cosf(2.0 * tau),
+        )
+    };
     let start = at(std::f32::consts::FRAC_PI_2);
     let points = std::array::from_fn(|i| {
         let s = i as f32 / (SEGMENT_SAMPLES - 1) as f32;

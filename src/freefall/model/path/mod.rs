@@ -17,6 +17,8 @@ pub use super::tilt::WindTilt;
 
 mod chain;
 mod pose;
+pub(crate) mod usual;
+use crate::math::geometry::{Q, V3};
 use pose::{heading_and_pitch, smoothstep};
 
 /// Most pieces one step may cross; the rest of a huge step falls straight at U.
@@ -31,7 +33,7 @@ const RELEASE_SWINGS: f32 = 1.0;
 /// ... and at least this long, s.
 const MIN_RELEASE: f32 = 0.25;
 /// Drift speeds below this, m/s, are still air (flushed to zero in `FallPath::advance`).
-const MIN_DRIFT: f32 = 1e-6;
+pub(crate) const MIN_DRIFT: f32 = 1e-6;
 
 /// The piece a motion change blends away from: its time and offset run on past its end.
 #[derive(Clone, Copy, Debug)]
@@ -150,7 +152,7 @@ impl FallPath {
         let rotation = release.rotation.and_then(crate::guard::unit_quat);
         let (yaw, theta) = match rotation {
             Some(q) => heading_and_pitch(q, random_yaw),
-            None => (Quat::from_rotation_y(random_yaw), 0.0),
+            None => (Q::from_rotation_y(random_yaw).quat(), 0.0),
         };
         let position = if release.position.is_finite() {
             release.position
@@ -193,17 +195,17 @@ impl FallPath {
         path.enter_motion(motion);
         path.piece = path.build_piece(db, theta, 1.0, None);
         path.piece_tilt = path.piece.tilt(db, 0.0);
-        let synthesised = path.yaw() * path.piece_tilt;
+        let synthesised = Q::of(path.yaw()).mul(Q::of(path.piece_tilt));
         let shown = match rotation {
             Some(q) => {
                 path.release = Some(Box::new(ReleaseFade {
-                    residual: (q * synthesised.inverse()).normalize(),
+                    residual: Q::of(q).mul(synthesised.conjugate()).normalize().quat(),
                     elapsed: 0.0,
                     length: (RELEASE_SWINGS * scales.swing_time()).max(MIN_RELEASE),
                 }));
                 q
             }
-            None => synthesised,
+            None => synthesised.quat(),
         };
         path.orientations = [shown; 2];
         path
@@ -262,32 +264,25 @@ impl FallPath {
                 return StepOutcome::Resting;
             }
         }
+        if self.usual(dt) {
+            // Inside one piece: the step lanes take too, through the same code.
+            let mut hot = self.hot(tilt);
+            hot.piece_time = hot.piece_time + dt;
+            let (end, turn) = self.piece.sample(model.database(), hot.piece_time);
+            let made = usual::advance(&mut hot, V3::of(end), Q::of(turn), dt, V3::of(wind));
+            return if self.take_usual(&hot, &made, 0, dt) {
+                StepOutcome::Landed
+            } else {
+                StepOutcome::Falling
+            };
+        }
         let delta = self.still_step(model, dt, wind);
         self.time += f64::from(dt);
-        self.still += delta;
-        // Backward Euler on dv/dt = (u − v) / τ: never past the wind, stable at any step. In
-        // still air the decaying drift would stay on subnormals (slow assists): flushed.
-        let slip = wind - self.drift;
-        let k = dt * self.scales.response_rate(slip.length_squared());
-        self.drift += slip * (k / (1.0 + k));
-        if self.drift.length_squared() < MIN_DRIFT * MIN_DRIFT {
-            self.drift = Vec3::ZERO;
-        }
-        let here = self.points[2];
-        let step = self.drift * dt + delta + self.carry;
-        let mut next = here + step;
-        // Exact: `next` and `here` are within a factor of two of each other wherever a step is
-        // smaller than the position (Sterbenz).
-        self.carry = step - (next - here);
-        if !self.carry.is_finite() {
-            self.carry = Vec3::ZERO;
-        }
-        let landed = next.y <= self.ground;
-        if landed {
-            next.y = self.ground;
-            self.drift = Vec3::ZERO;
-            self.carry = Vec3::ZERO;
-        }
+        let mut hot = self.hot(tilt);
+        let (next, landed) = usual::fall_on(&mut hot, V3::of(delta), dt, V3::of(wind));
+        (self.drift, self.still, self.carry) =
+            (hot.drift.vec3(), hot.still.vec3(), hot.carry.vec3());
+        let next = next.vec3();
         let orientation = self.orientation_now(model.database(), wind, tilt, dt);
         self.points = [self.points[1], self.points[2], next];
         self.orientations = [self.orientations[1], orientation];
@@ -353,9 +348,7 @@ impl FallPath {
 
     /// `v` from the heading frame to the world: a turn by ψ about +Y.
     fn turned(&self, v: Vec3) -> Vec3 {
-        let (ch, sh) = (self.heading.x, self.heading.y);
-        let (c, s) = (ch * ch - sh * sh, 2.0 * ch * sh);
-        Vec3::new(v.x * c + v.z * s, v.y, v.z * c - v.x * s)
+        usual::turned((self.heading.x, self.heading.y), V3::of(v)).vec3()
     }
 
     /// The heading as a quaternion.

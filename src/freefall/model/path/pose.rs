@@ -11,6 +11,8 @@ use super::super::motion::FallScales;
 use super::super::regime::PrimitiveMotion;
 use super::super::tilt::WindTilt;
 use super::FallPath;
+use crate::math::geometry::{Q, V3};
+use crate::math::kernels::atan2;
 
 impl FallPath {
     pub(super) fn orientation_now(
@@ -20,26 +22,26 @@ impl FallPath {
         tilt: &WindTilt,
         dt: f32,
     ) -> Quat {
+        // Portable quaternion arithmetic throughout (the same bits on every machine).
         let piece = match &self.previous {
-            Some(old) => old
-                .piece
-                .tilt(db, old.time)
-                .slerp(self.piece_tilt, smoothstep(old.elapsed / old.length)),
-            None => self.piece_tilt,
+            Some(old) => Q::of(old.piece.tilt(db, old.time))
+                .slerp(Q::of(self.piece_tilt), smoothstep(old.elapsed / old.length)),
+            None => Q::of(self.piece_tilt),
         };
-        let synthesised = self.yaw() * piece;
+        let synthesised = Q::of(self.yaw()).mul(piece);
         // Unit to rounding: each step's orientation is made afresh, and what is shown is
         // normalised (`smoothed`, `orientation`).
         let Some(release) = self.release.as_mut() else {
-            return tilt.rotation(wind) * synthesised;
+            return Q::of(tilt.rotation(wind)).mul(synthesised).quat();
         };
         release.elapsed += dt;
         let w = smoothstep(release.elapsed / release.length);
-        let residual = release.residual.slerp(Quat::IDENTITY, w);
+        let residual = Q::of(release.residual).slerp(Q::identity(), w);
         if w >= 1.0 {
             self.release = None;
         }
-        (tilt.scaled_rotation(wind, w) * residual * synthesised).normalize()
+        let lean = Q::of(tilt.scaled_rotation(wind, w));
+        lean.mul(residual).mul(synthesised).normalize().quat()
     }
 
     /// The shown pose a fraction `s` ∈ [0, 1] of a step after the second-to-last control point:
@@ -122,15 +124,16 @@ impl FallPath {
 /// and the plate's pitch about that axis. A long axis pointing straight up or down gives no
 /// heading: `fallback` (an angle about Y) is used.
 pub(super) fn heading_and_pitch(rotation: Quat, fallback: f32) -> (Quat, f32) {
-    let long = rotation * Vec3::Z;
-    let horizontal = bevy::math::Vec2::new(long.x, long.z);
-    let yaw = if horizontal.length_squared() > 1e-6 {
-        Quat::from_rotation_y(horizontal.x.atan2(horizontal.y))
+    let rotation = Q::of(rotation);
+    let long = rotation.rotate(V3::of(Vec3::Z));
+    let horizontal = long.x * long.x + long.z * long.z;
+    let yaw = Q::from_rotation_y(if horizontal > 1e-6 {
+        atan2(long.x, long.z)
     } else {
-        Quat::from_rotation_y(fallback)
-    };
-    let chord = yaw.inverse() * (rotation * Vec3::X);
-    (yaw, chord.y.atan2(chord.x))
+        fallback
+    });
+    let chord = yaw.conjugate().rotate(rotation.rotate(V3::of(Vec3::X)));
+    (yaw.quat(), atan2(chord.y, chord.x))
 }
 
 /// 3x² − 2x³ on x clamped to [0, 1] (bevy_math's [`EaseFunction::SmoothStep`]): how a blend

@@ -16,7 +16,9 @@ use bevy::math::{Quat, Vec2, Vec3};
 use super::database::{SEGMENT_SAMPLES, TrajectoryDatabase};
 use super::motion::{CHAOTIC_MIN_TIME, CHAOTIC_SCALE, FallScales, Glide, MOTION_SHAPES};
 use super::regime::PrimitiveMotion;
-use super::series::sin_cos_small;
+use crate::math::kernels::sin_cos;
+
+pub(crate) mod sample;
 
 /// A stretch of still-fluid motion, evaluated relative to its start.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,6 +65,10 @@ pub(crate) enum Piece {
         duration: f32,
         /// The half-turns the plate carries from earlier tumbles (a multiple of π), rad.
         flip: f32,
+        /// Eq. 6 at `start` (what a sample's displacement is counted from).
+        start_position: Vec3,
+        /// The rotation about z by `flip`.
+        flip_rotation: Quat,
     },
 }
 
@@ -130,7 +136,7 @@ impl Piece {
                 theta + (base + sign * range - theta).clamp(-most, most),
             )
         };
-        let (sin, cos) = (0.5 * theta).sin_cos();
+        let (sin, cos) = sin_cos(0.5 * theta);
         let sideways = if tumble { choice.survival } else { 1.0 };
         let swings = choice.swings(tumble);
         let duration = (swings * scales.swing_time()).max(MIN_PIECE);
@@ -172,7 +178,7 @@ impl Piece {
         flip: f32,
     ) -> Self {
         let shape = MOTION_SHAPES[motion.index()];
-        Self::Curve {
+        let mut curve = Self::Curve {
             amplitude: amplitude / (1.0 + shape.eccentricity),
             eccentricity: shape.eccentricity,
             lobes: shape.lobes,
@@ -181,121 +187,27 @@ impl Piece {
             start,
             duration: scales.swing_time().max(MIN_PIECE),
             flip,
+            start_position: Vec3::ZERO,
+            flip_rotation: Quat::IDENTITY,
+        };
+        let lanes = sample::CurveLanes::<f32>::of(&[&curve]);
+        let at_start = sample::curve_motion(&lanes, start).0.vec3();
+        let turned = sample::rotation_z((1.0, 0.0), flip).quat();
+        if let Self::Curve {
+            start_position,
+            flip_rotation,
+            ..
+        } = &mut curve
+        {
+            (*start_position, *flip_rotation) = (at_start, turned);
         }
+        curve
     }
 
     /// Length, s.
     pub fn duration(&self) -> f32 {
         match *self {
             Self::Swing { duration, .. } | Self::Curve { duration, .. } => duration,
-        }
-    }
-
-    /// Displacement since the start and the plate's tilt at piece time `t`, in the frame where
-    /// x is the heading, y up and z the heading × up. Beyond its end a swing continues in a
-    /// straight line at its final velocity and keeps its final angle; a curve continues eq. 6.
-    pub fn sample(&self, db: &TrajectoryDatabase, t: f32) -> (Vec3, Quat) {
-        match *self {
-            Self::Swing {
-                segment,
-                sign,
-                scale,
-                sideways,
-                duration,
-                tumble,
-                turn,
-                start_half,
-                ease,
-                ..
-            } => {
-                let seg = db.segment(segment);
-                let last = SEGMENT_SAMPLES - 1;
-                let s = t / duration;
-                let x = s.clamp(0.0, 1.0) * last as f32;
-                // x ∈ [0, last]: the i32 conversion is the cheap one.
-                let i = (x as i32).clamp(0, last as i32 - 1) as usize;
-                let f = x - i as f32;
-                let mut p = seg.points[i].lerp(seg.points[i + 1], f);
-                if s > 1.0 {
-                    p += (seg.points[last] - seg.points[last - 1]) * (last as f32 * (s - 1.0));
-                }
-                let shape = if tumble {
-                    db.tumble_shape()
-                } else {
-                    &seg.angle_shape
-                };
-                let u = s.clamp(0.0, 1.0);
-                let progress =
-                    shape[i] + (shape[i + 1] - shape[i]) * f + ease * u * (1.0 - u).powi(2);
-                let offset = Vec3::new(sign * p.x * scale * sideways, p.y * scale, 0.0);
-                (offset, rotation_z(start_half, turn * progress))
-            }
-            Self::Curve { start, .. } => {
-                let (position, velocity) = self.curve_motion(start + t);
-                (
-                    position - self.curve_motion(start).0,
-                    self.curve_tilt(velocity),
-                )
-            }
-        }
-    }
-
-    /// [`Piece::sample`]'s displacement alone.
-    pub fn offset(&self, db: &TrajectoryDatabase, t: f32) -> Vec3 {
-        self.sample(db, t).0
-    }
-
-    /// [`Piece::sample`]'s tilt alone.
-    pub fn tilt(&self, db: &TrajectoryDatabase, t: f32) -> Quat {
-        self.sample(db, t).1
-    }
-
-    /// Eq. 6 at curve time `time` and its time derivative, from one `sin_cos` of the phase and
-    /// one of the lobes' phase: r = A(1 + ε sin kφ), φ = Ω t, p = (r cos φ, −U t, r sin φ), so
-    /// ṗ = (ṙ cos φ − r Ω sin φ, −U, ṙ sin φ + r Ω cos φ) with ṙ = A ε k Ω cos kφ. (A finite
-    /// difference in f32 loses its digits as curve time grows: at 100 s a step of 1 ms is
-    /// 1 % of the time's last bit.)
-    fn curve_motion(&self, time: f32) -> (Vec3, Vec3) {
-        let Self::Curve {
-            amplitude,
-            eccentricity,
-            lobes,
-            rate,
-            descent,
-            ..
-        } = *self
-        else {
-            return (Vec3::ZERO, Vec3::ZERO);
-        };
-        let phase = rate * time;
-        let (sl, cl) = (lobes * phase).sin_cos();
-        let radius = amplitude * (1.0 + eccentricity * sl);
-        let d_radius = amplitude * eccentricity * lobes * rate * cl;
-        let (s, c) = phase.sin_cos();
-        (
-            Vec3::new(radius * c, -descent * time, radius * s),
-            Vec3::new(
-                d_radius * c - radius * rate * s,
-                -descent,
-                d_radius * s + radius * rate * c,
-            ),
-        )
-    }
-
-    /// A curve's plate leans into its horizontal velocity `velocity` by half its glide angle
-    /// (after the half-turns it carries).
-    fn curve_tilt(&self, velocity: Vec3) -> Quat {
-        let Self::Curve { descent, flip, .. } = *self else {
-            return Quat::IDENTITY;
-        };
-        let horizontal = Vec2::new(velocity.x, velocity.z);
-        let speed = horizontal.length();
-        let base = Quat::from_rotation_z(flip);
-        if speed > 1e-6 && speed.is_finite() {
-            let axis = Vec3::new(-horizontal.y, 0.0, horizontal.x) / speed;
-            Quat::from_axis_angle(axis, 0.5 * speed.atan2(descent.max(1e-6))) * base
-        } else {
-            base
         }
     }
 
@@ -350,15 +262,5 @@ fn ease_toward(shape: &[f32; SEGMENT_SAMPLES], wanted: f32) -> f32 {
 /// Shortest piece, s: keeps the piece loop finite for any input.
 pub const MIN_PIECE: f32 = 1e-4;
 
-/// The rotation about z by θ₀ + φ, from (cos θ₀/2, sin θ₀/2) and φ (a swing's turn times its
-/// progress, which the ease lets run from −¼ to 1¼; beyond |φ| = 2π the series hands over to
-/// the library).
-fn rotation_z(start_half: Vec2, phi: f32) -> Quat {
-    let (s, c) = sin_cos_small(0.5 * phi);
-    let (c0, s0) = (start_half.x, start_half.y);
-    Quat::from_xyzw(0.0, 0.0, s0 * c + c0 * s, c0 * c - s0 * s)
-}
-
 #[cfg(test)]
-#[path = "piece_tests.rs"]
 mod tests;

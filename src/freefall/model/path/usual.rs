@@ -1,0 +1,174 @@
+//! The usual step of a fall (§4.2 inside one piece: no piece ends, no blend from a motion
+//! change, no release fading, not landed), written once for one fall or for several in SIMD
+//! lanes ([`Lane`]): sampling the piece (a database swing or eq. 6's curve), the fluid's drift
+//! relaxing toward the wind, the compensated move, landing, and the orientation with eq. 15's
+//! tilt. Every fall takes this step through the same code whatever lane or chunk it lands in,
+//! so its path has the same bits with lanes or without, on any number of threads, on any
+//! machine. What lanes cannot share (a new piece, the Markov step, a swing search, a blend, a
+//! release fading) is [`FallPath::advance`]'s own, one fall at a time.
+
+use bevy::math::{Quat, Vec3};
+
+use super::super::tilt::{WindTilt, wind_tilt};
+use super::{FallPath, MIN_DRIFT};
+use crate::math::geometry::{Q, V3};
+use crate::math::lane::Lane;
+
+/// What the usual step reads and writes of each fall, lane by lane.
+#[derive(Clone, Copy)]
+pub(crate) struct Hot<L> {
+    pub piece_time: L,
+    pub piece_offset: V3<L>,
+    pub lateral: L,
+    pub drift: V3<L>,
+    pub still: V3<L>,
+    pub carry: V3<L>,
+    /// The last control point, p_i.
+    pub point: V3<L>,
+    /// (cos ψ/2, sin ψ/2) of the heading.
+    pub heading: (L, L),
+    /// The fall's sizes: U (m/s) and the drag length (m), and the ground's height.
+    pub descent_speed: L,
+    pub drag_length: L,
+    pub ground: L,
+    /// Eq. 15's tilt: W (rad) and U_ref (m/s).
+    pub max_angle: L,
+    pub reference_speed: L,
+}
+
+/// What the usual step makes: the next control point and orientation, the piece's tilt, and
+/// which falls landed.
+pub(crate) struct Made<L: Lane> {
+    pub next: V3<L>,
+    pub orientation: Q<L>,
+    pub piece_tilt: Q<L>,
+    pub landed: L::Mask,
+}
+
+/// `v` turned from the heading frame to the world: by ψ about +Y.
+pub(crate) fn turned<L: Lane>(heading: (L, L), v: V3<L>) -> V3<L> {
+    let (ch, sh) = heading;
+    let (c, s) = (ch * ch - sh * sh, L::splat(2.0) * ch * sh);
+    V3::new(v.x * c + v.z * s, v.y, v.z * c - v.x * s)
+}
+
+/// The usual step of `dt` seconds in `wind` (already held to the largest speed), the piece
+/// sampled at the new piece time (`hot.piece_time`, already moved on) as `end` and `tilt`:
+/// the piece's increment turned to the world, then [`fall_on`], and the orientation yaw ·
+/// piece tilt under eq. 15's tilt.
+pub(crate) fn advance<L: Lane>(
+    hot: &mut Hot<L>,
+    end: V3<L>,
+    tilt: Q<L>,
+    dt: L,
+    wind: V3<L>,
+) -> Made<L> {
+    let inc = end.sub(hot.piece_offset);
+    hot.piece_offset = end;
+    hot.lateral = hot.lateral + inc.x;
+    let delta = turned(hot.heading, inc);
+    let (next, landed) = fall_on(hot, delta, dt, wind);
+    let zero = L::splat(0.0);
+    let yaw = Q::new(zero, hot.heading.1, zero, hot.heading.0);
+    let lean = wind_tilt(hot.max_angle, hot.reference_speed, wind, L::splat(1.0));
+    Made {
+        next,
+        orientation: lean.mul(yaw.mul(tilt)),
+        piece_tilt: tilt,
+        landed,
+    }
+}
+
+/// §4.2's p ← p + v dt + Δf for a still-fluid displacement `delta` over `dt`: the drift v
+/// relaxes toward `wind` by backward Euler, the move is carried in compensated summation (a
+/// step below f32's spacing far from the origin is kept until it adds up), and a fall that
+/// reaches the ground stops on it. Returns the new point and whether it landed.
+pub(crate) fn fall_on<L: Lane>(
+    hot: &mut Hot<L>,
+    delta: V3<L>,
+    dt: L,
+    wind: V3<L>,
+) -> (V3<L>, L::Mask) {
+    hot.still = hot.still.add(delta);
+    // Backward Euler on dv/dt = (u − v) / τ, 1/τ = √(U² + |u − v|²) / drag length: never past
+    // the wind, stable at any step; in still air a decaying drift is flushed to zero.
+    let slip = wind.sub(hot.drift);
+    let u = hot.descent_speed;
+    let length = L::select(
+        hot.drag_length.gt(L::splat(1e-12)),
+        hot.drag_length,
+        L::splat(1e-12),
+    );
+    let k = dt * ((u * u + slip.length_squared()).sqrt() / length);
+    let drift = hot.drift.add(slip.scale(k / (L::splat(1.0) + k)));
+    let still_air = drift.length_squared().lt(L::splat(MIN_DRIFT * MIN_DRIFT));
+    hot.drift = V3::select(still_air, V3::splat(Vec3::ZERO), drift);
+    let step = hot.drift.scale(dt).add(delta).add(hot.carry);
+    let mut next = hot.point.add(step);
+    // Exact: `next` and the point are within a factor of two of each other wherever a step is
+    // smaller than the position (Sterbenz).
+    let carry = step.sub(next.sub(hot.point));
+    let bounded = |v: L| v.abs().lt(L::splat(f32::INFINITY));
+    let finite = L::and(bounded(carry.x), L::and(bounded(carry.y), bounded(carry.z)));
+    hot.carry = V3::select(finite, carry, V3::splat(Vec3::ZERO));
+    let landed = next.y.le(hot.ground);
+    next.y = L::select(landed, hot.ground, next.y);
+    hot.drift = V3::select(landed, V3::splat(Vec3::ZERO), hot.drift);
+    hot.carry = V3::select(landed, V3::splat(Vec3::ZERO), hot.carry);
+    hot.point = next;
+    (next, landed)
+}
+
+impl FallPath {
+    /// Whether the next step of `dt` is a usual one (see the module's docs).
+    pub(crate) fn usual(&self, dt: f32) -> bool {
+        !self.landed
+            && self.previous.is_none()
+            && self.release.is_none()
+            && self.piece_time + dt < self.piece.duration()
+    }
+
+    /// What the usual step reads of this fall (one lane).
+    pub(crate) fn hot(&self, tilt: &WindTilt) -> Hot<f32> {
+        Hot {
+            piece_time: self.piece_time,
+            piece_offset: V3::of(self.piece_offset),
+            lateral: self.lateral,
+            drift: V3::of(self.drift),
+            still: V3::of(self.still),
+            carry: V3::of(self.carry),
+            point: V3::of(self.points[2]),
+            heading: (self.heading.x, self.heading.y),
+            descent_speed: self.scales.descent_speed,
+            drag_length: self.scales.drag_length,
+            ground: self.ground,
+            max_angle: tilt.max_angle,
+            reference_speed: tilt.reference_speed,
+        }
+    }
+
+    /// Takes back what a usual step of `dt` made of lane `k` of `hot` and `made`.
+    pub(crate) fn take_usual<L: Lane>(
+        &mut self,
+        hot: &Hot<L>,
+        made: &Made<L>,
+        k: usize,
+        dt: f32,
+    ) -> bool {
+        let v = |v: V3<L>| Vec3::new(v.x.get(k), v.y.get(k), v.z.get(k));
+        let q = |q: Q<L>| Quat::from_xyzw(q.x.get(k), q.y.get(k), q.z.get(k), q.w.get(k));
+        self.piece_time = hot.piece_time.get(k);
+        self.piece_offset = v(hot.piece_offset);
+        self.piece_tilt = q(made.piece_tilt);
+        self.lateral = hot.lateral.get(k);
+        self.drift = v(hot.drift);
+        self.still = v(hot.still);
+        self.carry = v(hot.carry);
+        self.time += f64::from(dt);
+        self.points = [self.points[1], self.points[2], v(made.next)];
+        self.orientations = [self.orientations[1], q(made.orientation)];
+        let landed = L::mask_get(made.landed, k);
+        self.landed = landed;
+        landed
+    }
+}
