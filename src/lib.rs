@@ -244,6 +244,8 @@ pub mod inspector;
 mod lifecycle;
 pub mod lod;
 mod math;
+#[doc(hidden)]
+pub use math::set_lanes;
 mod plugins;
 pub mod schedule;
 pub mod spectrum;

@@ -6,6 +6,7 @@
 #![allow(dead_code, unused_imports)] // each example uses a different subset
 
 mod args;
+pub mod fingerprint;
 mod harness;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod layout;

@@ -278,6 +278,10 @@ fn tour(
         match Scene::ALL.get(tour.next) {
             Some(&scene) => next.set(scene),
             None => {
+                // The falls' fingerprint: the same on every machine and in the browser (CI
+                // compares the browser's with the desktop's).
+                let hash = common::fingerprint::fingerprint(None);
+                info!("fingerprint: {hash:016x}");
                 exit.write(common::exit_code(&failures));
             }
         }

@@ -146,6 +146,24 @@ impl TierClock {
         }
     }
 
+    /// Whether a step at `clock` is a plain one: no easing under way and the last span shown in
+    /// full (what [`Self::advance`] then does is the path's step and [`Self::stepped`]).
+    pub(crate) fn plain_at(&self, clock: f64) -> bool {
+        !self.easing(clock) && self.share(clock) >= 1.0 - 1e-3
+    }
+
+    /// The seconds since the last step, at `clock`.
+    pub(crate) fn waited(&self, clock: f64) -> f32 {
+        (clock - self.updated) as f32
+    }
+
+    /// Records a plain step of `waited` seconds taken at `clock`, the next `next` seconds on.
+    pub(crate) fn stepped(&mut self, clock: f64, next: f32, waited: f32) {
+        self.from = None;
+        self.updated = clock;
+        self.span = if next > waited { next } else { waited };
+    }
+
     /// True while an easing is under way at `now`.
     pub(crate) fn easing(&self, now: f64) -> bool {
         self.from.as_ref().is_some_and(|e| e.end > now)
@@ -181,7 +199,7 @@ impl TierClock {
         wind: Vec3,
         tilt: &WindTilt,
     ) -> (StepOutcome, f32) {
-        let waited = (clock - self.updated) as f32;
+        let waited = self.waited(clock);
         let running = self.from.as_ref().map(|e| e.end).filter(|&end| end > clock);
         // (The share is a ratio of f64 clock differences rounded to f32: a step of the same
         // span can come out a rounding short of 1, which is no lag worth easing.)

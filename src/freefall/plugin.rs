@@ -1,17 +1,18 @@
 //! The [`FallPlugin`]: steps every [`FallingObject`] on the fixed timestep and poses it once
 //! per frame.
 
-use std::sync::{Mutex, PoisonError};
-
 use bevy::app::{App, Plugin, PostUpdate};
 use bevy::ecs::prelude::*;
 use bevy::math::{Quat, Vec3};
+use bevy::tasks::{ComputeTaskPool, ParallelSliceMut};
 use bevy::time::{Fixed, Time};
 use bevy::transform::components::Transform;
 
 use super::lod::{FallClock, FallLod, TierClock};
 use super::model::FallModel;
-use super::model::path::{StepOutcome, WindTilt};
+use super::model::path::usual::{UsualJob, run_usual};
+use super::model::path::{FallPath, StepOutcome, WindTilt};
+use super::model::piece::Piece;
 use super::object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
 use crate::lod::LodFocus;
 use crate::schedule::WindfallSystems;
@@ -69,10 +70,22 @@ impl Plugin for FallPlugin {
     }
 }
 
-/// Steps every fall; objects are independent, so they run in parallel (with Bevy's
-/// `multi_threaded` feature) and the landings are written sorted by entity, so the messages do
-/// not depend on the thread schedule. An object with [`FallLod`] is stepped when its tier is due
-/// (see [`crate::lod`]), over the time since its last step.
+/// What stepping a falling object reads and writes.
+type Fall<'a> = (
+    Entity,
+    &'a FallingObject,
+    Mut<'a, FallState>,
+    Option<&'a FallLod>,
+);
+
+/// Objects a parallel task steps together.
+const OBJECT_CHUNK: usize = 256;
+
+/// Steps every fall; objects are independent, so chunks of them run in parallel (with Bevy's
+/// `multi_threaded` feature), the usual steps of each chunk four at a time in SIMD lanes, and
+/// the landings are written sorted by entity, so neither the messages nor any bit depends on the
+/// thread schedule. An object with [`FallLod`] is stepped when its tier is due (see
+/// [`crate::lod`]), over the time since its last step.
 #[allow(clippy::too_many_arguments)]
 fn step_objects(
     mut objects: Query<(Entity, &FallingObject, &mut FallState, Option<&FallLod>)>,
@@ -94,62 +107,116 @@ fn step_objects(
     *warned = false;
     let dt = time.delta_secs();
     clock.tick(dt);
-    let clock = *clock;
-    let focus = crate::lod::focus(&foci);
-    let wind = wind.as_deref();
-    let landings = Mutex::new(Vec::new());
-    objects
-        .par_iter_mut()
-        .for_each(|(entity, object, mut state, lod)| {
-            let state = &mut *state;
-            let Some(path) = state.path.as_mut() else {
-                return;
-            };
-            // Its first step with levels of detail is taken at once (a fall just let go does
-            // not wait for its turn), as if it had been stepped on the step before.
-            let first = state.tier.is_none() && lod.is_some();
-            if first {
-                state.tier = Some(TierClock::stepped_at(clock.seconds - f64::from(dt), dt));
-            }
-            let tier = lod
-                .zip(focus)
-                .map_or(1, |(l, f)| f.tier(&l.0, path.position()));
-            if !first && !clock.due(tier, entity.index_u32()) {
-                return;
-            }
-            // Resting objects feel the wind too: a strong enough one lifts them again.
-            let velocity = wind.map_or(Vec3::ZERO, |w| w.velocity(path.position()));
-            let tilt = WindTilt::in_wind(object.wind_tilt, wind);
-            let outcome = match state.tier.as_mut() {
-                Some(t) => {
-                    let next = clock.steps_to_next(tier, entity.index_u32()) as f32 * dt;
-                    let (outcome, _) =
-                        t.advance(path, &model, clock.seconds, next, velocity, &tilt);
-                    // Back at full detail for good (the component was removed) once eased.
-                    if lod.is_none() && !t.easing(clock.seconds) {
-                        state.tier = None;
-                    }
-                    outcome
-                }
-                None => path.advance(&model, dt, velocity, &tilt),
-            };
-            if outcome == StepOutcome::Landed {
-                let message = Landed {
-                    entity,
-                    position: path.position(),
-                    flight_time: path.time(),
-                };
-                landings
-                    .lock()
-                    .unwrap_or_else(PoisonError::into_inner)
-                    .push(message);
-            }
-        });
-    let mut landings = landings
-        .into_inner()
-        .unwrap_or_else(PoisonError::into_inner);
+    let step = ObjectStep {
+        model: &model,
+        wind: wind.as_deref(),
+        focus: crate::lod::focus(&foci),
+        clock: *clock,
+        dt,
+        lanes: crate::math::lanes_enabled(),
+    };
+    let mut falls: Vec<Fall> = objects.iter_mut().collect();
+    let mut landings: Vec<Landed> = match ComputeTaskPool::try_get() {
+        Some(pool) if falls.len() > OBJECT_CHUNK => falls
+            .par_chunk_map_mut(pool, OBJECT_CHUNK, |_, chunk| step_chunk(chunk, &step))
+            .into_iter()
+            .flatten()
+            .collect(),
+        _ => falls
+            .chunks_mut(OBJECT_CHUNK)
+            .flat_map(|chunk| step_chunk(chunk, &step))
+            .collect(),
+    };
     landings.sort_by_key(|l| l.entity);
     landed.write_batch(landings);
+}
+
+/// What the chunks of one step share.
+struct ObjectStep<'a> {
+    model: &'a FallModel,
+    wind: Option<&'a WindField>,
+    focus: Option<crate::lod::Focus>,
+    clock: FallClock,
+    dt: f32,
+    lanes: bool,
+}
+
+/// Steps a chunk of objects: the usual steps in lanes, the rest one at a time; returns the
+/// landings.
+fn step_chunk(chunk: &mut [Fall], step: &ObjectStep) -> Vec<Landed> {
+    let (clock, dt) = (step.clock, step.dt);
+    let mut landings = Vec::new();
+    let (mut swings, mut curves) = (Vec::new(), Vec::new());
+    for (i, (entity, object, state, lod)) in chunk.iter_mut().enumerate() {
+        let state = &mut **state;
+        let Some(path) = state.path.as_mut() else {
+            continue;
+        };
+        // Its first step with levels of detail is taken at once (a fall just let go does
+        // not wait for its turn), as if it had been stepped on the step before.
+        let first = state.tier.is_none() && lod.is_some();
+        if first {
+            state.tier = Some(TierClock::stepped_at(clock.seconds - f64::from(dt), dt));
+        }
+        let tier = lod
+            .zip(step.focus)
+            .map_or(1, |(l, f)| f.tier(&l.0, path.position()));
+        if !first && !clock.due(tier, entity.index_u32()) {
+            continue;
+        }
+        // Resting objects feel the wind too: a strong enough one lifts them again.
+        let velocity = step
+            .wind
+            .map_or(Vec3::ZERO, |w| w.velocity(path.position()));
+        let tilt = WindTilt::in_wind(object.wind_tilt, step.wind);
+        let job = UsualJob::new(i, velocity, dt, tilt);
+        if step.lanes && state.tier.is_none() && path.usual(job.dt) {
+            match path.piece() {
+                Piece::Swing { .. } => swings.push(job),
+                Piece::Curve { .. } => curves.push(job),
+            }
+            continue;
+        }
+        let outcome = match state.tier.as_mut() {
+            Some(t) => {
+                let next = clock.steps_to_next(tier, entity.index_u32()) as f32 * dt;
+                let (outcome, _) =
+                    t.advance(path, step.model, clock.seconds, next, velocity, &tilt);
+                // Back at full detail for good (the component was removed) once eased.
+                if lod.is_none() && !t.easing(clock.seconds) {
+                    state.tier = None;
+                }
+                outcome
+            }
+            None => path.advance(step.model, dt, velocity, &tilt),
+        };
+        if outcome == StepOutcome::Landed {
+            landings.push(landing(*entity, path));
+        }
+    }
+    let db = step.model.database();
+    for jobs in [&swings, &curves] {
+        run_usual(chunk, jobs, path_of, db, |fall, _, landed| {
+            if landed && let Some(path) = fall.2.path.as_ref() {
+                landings.push(landing(fall.0, path));
+            }
+        });
+    }
+    landings
+}
+
+/// The fall of an object whose usual step is being taken (it has one).
+fn path_of<'a>(fall: &'a mut Fall<'_>) -> &'a mut FallPath {
+    fall.2.path.as_mut().expect("a usual step has a path")
+}
+
+/// The message of `entity`'s fall reaching the ground.
+fn landing(entity: Entity, path: &FallPath) -> Landed {
+    Landed {
+        entity,
+        position: path.position(),
+        flight_time: path.time(),
+    }
 }
 
 fn pose_objects(

@@ -65,10 +65,6 @@ impl<L: Lane> Q<L> {
         Self { x, y, z, w }
     }
 
-    pub fn splat(q: Quat) -> Self {
-        Self::new(L::splat(q.x), L::splat(q.y), L::splat(q.z), L::splat(q.w))
-    }
-
     pub fn identity() -> Self {
         Self::new(L::splat(0.0), L::splat(0.0), L::splat(0.0), L::splat(1.0))
     }

@@ -6,9 +6,27 @@
 //! crate computes rarely (a new swing, a Markov step, the database at start-up) uses the
 //! pure-Rust `libm`, which is portable in the same way.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 pub(crate) mod geometry;
 pub(crate) mod kernels;
 pub(crate) mod lane;
+
+/// Whether the falls' usual steps go several at a time in SIMD lanes (on unless turned off):
+/// their bits are the same either way, so this only changes the speed.
+static LANES: AtomicBool = AtomicBool::new(true);
+
+/// Turns the lanes off (`false`) or on: for tests and benchmarks that compare the two, which
+/// must give the same bits. Not part of the crate's interface.
+#[doc(hidden)]
+pub fn set_lanes(on: bool) {
+    LANES.store(on, Ordering::Relaxed);
+}
+
+/// Whether the lanes are on.
+pub(crate) fn lanes_enabled() -> bool {
+    LANES.load(Ordering::Relaxed)
+}
 
 #[cfg(test)]
 mod tests;

@@ -145,7 +145,8 @@ impl WindConfig {
         InvalidValue::check(
             h.is_finite()
                 && h > z0
-                && super::profile::ln(h) - super::profile::ln(z0) >= WindConfig::MIN_LOG_RATIO,
+                && crate::math::kernels::ln(h) - crate::math::kernels::ln(z0)
+                    >= WindConfig::MIN_LOG_RATIO,
             "reference_height",
             h,
             "must be finite and at least 1.105 × `roughness` (ln(h/z0) ≥ 0.1)",

@@ -22,7 +22,7 @@ mod gizmos;
 mod local;
 mod placement;
 mod plugin;
-pub(crate) mod profile;
+
 mod pulse;
 mod rebuild;
 mod settings;

@@ -11,7 +11,9 @@ use crate::freefall::lod::{FallClock, TierClock};
 use crate::freefall::model::FallModel;
 use crate::freefall::model::markov::BoundedChain;
 use crate::freefall::model::motion::FallScales;
+use crate::freefall::model::path::usual::{self, UsualJob};
 use crate::freefall::model::path::{FallPath, StepOutcome, WindTilt};
+use crate::freefall::model::piece::Piece;
 use crate::freefall::model::random::FallRng;
 use crate::freefall::model::release::FallRelease;
 use crate::lod::Focus;
@@ -183,6 +185,7 @@ impl CloudLeaves {
         let ctx = ChunkContext {
             step,
             tilt: WindTilt::in_wind(step.wind_tilt, step.wind),
+            lanes: crate::math::lanes_enabled(),
             clock: self.clock,
             lod: self.lod,
             recycle_after: self.recycle_after,
@@ -314,6 +317,8 @@ impl CloudLeaves {
 struct ChunkContext<'a> {
     step: &'a CloudStep<'a>,
     tilt: WindTilt,
+    /// Whether usual steps go four leaves at a time (the same bits either way).
+    lanes: bool,
     clock: FallClock,
     lod: LodTiers,
     recycle_after: Option<f32>,
@@ -332,6 +337,9 @@ struct ChunkReport {
 fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkReport {
     let mut report = ChunkReport::default();
     let step = ctx.step;
+    // Leaves whose step is a usual one (inside a piece, at full step, no easing) wait for the
+    // lanes, swings apart from curves: (index, wind, seconds since the last step, to the next).
+    let (mut swings, mut curves) = (Vec::new(), Vec::new());
     for (i, leaf) in chunk.iter_mut().enumerate() {
         let position = leaf.path.position();
         let every = step.focus.map_or(1, |f| f.tier(&ctx.lod, position));
@@ -347,6 +355,18 @@ fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkRepo
         let wind = step.wind.map_or(Vec3::ZERO, |w| w.velocity(position));
         // Its tier's next turn is this many steps on.
         let next = ctx.clock.steps_to_next(every, index) as f32 * step.dt;
+        let waited = leaf.tier.waited(ctx.clock.seconds);
+        let usual = UsualJob {
+            next,
+            ..UsualJob::new(i, wind, waited, ctx.tilt)
+        };
+        if ctx.lanes && leaf.tier.plain_at(ctx.clock.seconds) && leaf.path.usual(usual.dt) {
+            match leaf.path.piece() {
+                Piece::Swing { .. } => swings.push(usual),
+                Piece::Curve { .. } => curves.push(usual),
+            }
+            continue;
+        }
         let (outcome, waited) = leaf.tier.advance(
             &mut leaf.path,
             step.model,
@@ -355,23 +375,55 @@ fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkRepo
             wind,
             &ctx.tilt,
         );
-        report.advanced += 1;
+        report.count(leaf, i, outcome, waited, ctx.recycle_after);
+    }
+    for jobs in [&swings, &curves] {
+        let db = step.model.database();
+        usual::run_usual(
+            chunk,
+            jobs,
+            |leaf| &mut leaf.path,
+            db,
+            |leaf, job, landed| {
+                leaf.tier.stepped(ctx.clock.seconds, job.next, job.waited);
+                let outcome = if landed {
+                    StepOutcome::Landed
+                } else {
+                    StepOutcome::Falling
+                };
+                report.count(leaf, job.index, outcome, job.waited, ctx.recycle_after);
+            },
+        );
+    }
+    report
+}
+
+impl ChunkReport {
+    /// Counts what a leaf's step did.
+    fn count(
+        &mut self,
+        leaf: &mut Leaf,
+        i: usize,
+        outcome: StepOutcome,
+        waited: f32,
+        recycle_after: Option<f32>,
+    ) {
+        self.advanced += 1;
         match outcome {
             StepOutcome::Landed => {
-                report.landed += 1;
+                self.landed += 1;
                 leaf.resting = 0.0;
             }
             StepOutcome::Resting => {
                 leaf.resting += waited;
-                if ctx.recycle_after.is_some_and(|t| leaf.resting >= t) {
-                    report.recycle.push(i as u32);
+                if recycle_after.is_some_and(|t| leaf.resting >= t) {
+                    self.recycle.push(i as u32);
                 }
             }
             StepOutcome::Falling => leaf.resting = 0.0,
         }
-        report.resting += usize::from(leaf.path.landed());
+        self.resting += usize::from(leaf.path.landed());
     }
-    report
 }
 
 /// The seed of leaf `index`'s `release`-th fall: SplitMix64's finaliser over the cloud's seed,

@@ -9,7 +9,7 @@ use bevy::reflect::Reflect;
 use super::config::{SpatialMode, TemporalMode, WindConfig};
 use super::ease::WindEasing;
 use super::error::WindError;
-use super::profile;
+
 use super::shelter::PlacedShelter;
 use super::source::PlacedSource;
 use crate::spectrum::{GridShape, SpectrumError, Synthesizer};
@@ -95,6 +95,7 @@ pub struct WindField {
 }
 
 mod live;
+pub(crate) mod profile;
 mod read;
 
 /// Numbers the fields made by [`WindField::new`].

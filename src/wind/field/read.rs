@@ -4,9 +4,9 @@
 use bevy::math::Vec3;
 
 use super::WindField;
+use super::profile;
 use crate::spectrum::{periodic_lerp, periodic_lerp_2d};
 use crate::wind::config::{SpatialMode, TemporalMode};
-use crate::wind::profile;
 
 impl WindField {
     /// The global field's velocity at `position` and `time` (sheltered), without the local

@@ -9,6 +9,10 @@
 
 use bevy::math::{Quat, Vec3};
 
+use super::super::database::TrajectoryDatabase;
+use super::super::piece::Piece;
+use super::super::piece::sample::{CurveLanes, SwingLanes, curve_sample, swing_sample};
+use super::super::release::FallRelease;
 use super::super::tilt::{WindTilt, wind_tilt};
 use super::{FallPath, MIN_DRIFT};
 use crate::math::geometry::{Q, V3};
@@ -147,6 +151,11 @@ impl FallPath {
         }
     }
 
+    /// The piece under way.
+    pub(crate) fn piece(&self) -> &Piece {
+        &self.piece
+    }
+
     /// Takes back what a usual step of `dt` made of lane `k` of `hot` and `made`.
     pub(crate) fn take_usual<L: Lane>(
         &mut self,
@@ -171,4 +180,116 @@ impl FallPath {
         self.landed = landed;
         landed
     }
+}
+
+/// A fall's usual step waiting for the lanes: which item it is, its wind and step as
+/// [`FallPath::advance`] holds them, its tilt, and what its owner keeps for afterwards.
+pub(crate) struct UsualJob {
+    pub index: usize,
+    pub wind: Vec3,
+    pub dt: f32,
+    pub tilt: WindTilt,
+    /// The seconds since the last step and until the next (a cloud leaf's tier clock).
+    pub waited: f32,
+    pub next: f32,
+}
+
+impl UsualJob {
+    /// Item `index`'s step of `dt` in `wind`, held as [`FallPath::advance`] holds them.
+    pub(crate) fn new(index: usize, wind: Vec3, dt: f32, tilt: WindTilt) -> Self {
+        Self {
+            index,
+            wind: crate::guard::clamp_length(wind, FallRelease::MAX_SPEED),
+            dt: if dt.is_finite() {
+                dt.clamp(0.0, FallRelease::MAX_STEP)
+            } else {
+                0.0
+            },
+            tilt,
+            waited: dt,
+            next: 0.0,
+        }
+    }
+}
+
+/// Takes `jobs` (usual steps of `items`, all swings or all curves) four at a time in SIMD
+/// lanes and the rest one at a time through the same code; `done` is told which landed.
+pub(crate) fn run_usual<T>(
+    items: &mut [T],
+    jobs: &[UsualJob],
+    path_of: impl Fn(&mut T) -> &mut FallPath,
+    db: &TrajectoryDatabase,
+    mut done: impl FnMut(&mut T, &UsualJob, bool),
+) {
+    let (quads, rest) = jobs.split_at(jobs.len() / 4 * 4);
+    for group in quads.chunks_exact(4) {
+        let group = [&group[0], &group[1], &group[2], &group[3]];
+        let Ok([a, b, c, d]) = items.get_disjoint_mut(group.map(|j| j.index)) else {
+            continue;
+        };
+        let landed = {
+            let mut paths = [path_of(a), path_of(b), path_of(c), path_of(d)];
+            step_usual::<wide::f32x4, 4>(&mut paths, group, db)
+        };
+        for (k, item) in [a, b, c, d].into_iter().enumerate() {
+            done(item, group[k], landed[k]);
+        }
+    }
+    for job in rest {
+        let item = &mut items[job.index];
+        let landed = step_usual::<f32, 1>(&mut [path_of(item)], [job], db)[0];
+        done(item, job, landed);
+    }
+}
+
+/// One usual step of `paths` (all swings or all curves), lane by lane, each with its job.
+fn step_usual<L: Lane, const N: usize>(
+    paths: &mut [&mut FallPath; N],
+    jobs: [&UsualJob; N],
+    db: &TrajectoryDatabase,
+) -> [bool; 4] {
+    debug_assert!(N == L::WIDTH);
+    let dts = jobs.map(|j| j.dt);
+    let winds = jobs.map(|j| j.wind);
+    let number = |read: &dyn Fn(&FallPath) -> f32| L::from_fn(|k| read(paths[k]));
+    let vector = |read: &dyn Fn(&FallPath) -> Vec3| {
+        V3::new(
+            number(&|p| read(p).x),
+            number(&|p| read(p).y),
+            number(&|p| read(p).z),
+        )
+    };
+    let dt = L::from_fn(|k| dts[k]);
+    let mut hot = Hot {
+        piece_time: number(&|p| p.piece_time) + dt,
+        piece_offset: vector(&|p| p.piece_offset),
+        lateral: number(&|p| p.lateral),
+        drift: vector(&|p| p.drift),
+        still: vector(&|p| p.still),
+        carry: vector(&|p| p.carry),
+        point: vector(&|p| p.points[2]),
+        heading: (number(&|p| p.heading.x), number(&|p| p.heading.y)),
+        descent_speed: number(&|p| p.scales.descent_speed),
+        drag_length: number(&|p| p.scales.drag_length),
+        ground: number(&|p| p.ground),
+        max_angle: L::from_fn(|k| jobs[k].tilt.max_angle),
+        reference_speed: L::from_fn(|k| jobs[k].tilt.reference_speed),
+    };
+    let pieces: [&Piece; 4] = std::array::from_fn(|k| &paths[k.min(L::WIDTH - 1)].piece);
+    let pieces = &pieces[..L::WIDTH];
+    let (end, turn) = match pieces[0] {
+        Piece::Swing { .. } => swing_sample(&SwingLanes::of(pieces), db, hot.piece_time),
+        Piece::Curve { .. } => curve_sample(&CurveLanes::of(pieces), hot.piece_time),
+    };
+    let wind = V3::new(
+        L::from_fn(|k| winds[k].x),
+        L::from_fn(|k| winds[k].y),
+        L::from_fn(|k| winds[k].z),
+    );
+    let made = advance(&mut hot, end, turn, dt, wind);
+    let mut landed = [false; 4];
+    for (k, path) in paths.iter_mut().enumerate() {
+        landed[k] = path.take_usual(&hot, &made, k, dts[k]);
+    }
+    landed
 }

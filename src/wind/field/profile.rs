@@ -27,13 +27,13 @@ pub(crate) fn friction_velocity(
     reference_height: f32,
     roughness: f32,
 ) -> f32 {
-    super::field::WindField::VON_KARMAN * reference_speed / ln(reference_height / roughness)
+    super::WindField::VON_KARMAN * reference_speed / ln(reference_height / roughness)
 }
 
 /// Logarithmic wind law, eq. 10: `U(h) = (u*/κ) ln(h/z0)`, and 0 at or below z0 (and for a
 /// non-finite height below the ground), never negative or NaN.
 pub(crate) fn log_law(friction_velocity: f32, roughness: f32, height: f32) -> f32 {
-    friction_velocity / super::field::WindField::VON_KARMAN * log_ratio(height, roughness)
+    friction_velocity / super::WindField::VON_KARMAN * log_ratio(height, roughness)
 }
 
 /// Height scaling of eq. 14: `(ln h − ln z0) / (ln h0 − ln z0)`, clamped to 0 at or below z0.
