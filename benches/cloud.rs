@@ -1,5 +1,6 @@
 //! Cost of one fixed step of 100 000 leaves in a [`LeafCloud`], against 100 000 bare drag
-//! particles in the same wind stepped the same way (the same thread pool, the same chunks):
+//! particles in the same wind stepped the same way (the same thread pool, the same chunks, the
+//! wind read four points at a time as the cloud reads it):
 //! v += (g + c |u − v| (u − v)) dt, x += v dt. Also the cost of posing the cloud for drawing and
 //! what levels of detail save.
 //!
@@ -11,7 +12,7 @@ use std::time::Duration;
 use bevy::math::Vec3;
 use bevy::tasks::{ParallelSliceMut, TaskPool, TaskPoolBuilder};
 use bevy_windfall::freefall::cloud::{CloudLeaves, CloudStep};
-use bevy_windfall::freefall::{CloudRegion, FallModel, LeafCloud, WindTilt};
+use bevy_windfall::freefall::{CloudRegion, FallModel, LeafCloud};
 use bevy_windfall::lod::{Focus, LodView};
 use bevy_windfall::wind::{WindConfig, WindField};
 use criterion::{BatchSize, Criterion, criterion_main};
@@ -59,12 +60,16 @@ fn step<'a>(model: &'a FallModel, wind: &'a WindField, focus: Option<Focus>) -> 
     }
 }
 
-/// The baseline: explicit drag particles, chunked on the same pool.
+/// The baseline: explicit drag particles, chunked on the same pool, each chunk reading the
+/// wind with the crate's batched read (`velocities_at`, four points at a time in SIMD lanes).
 fn drag_particles(mut particles: &mut [(Vec3, Vec3)], wind: &WindField, pool: &TaskPool) {
     let c = 0.5 * 1.2 * 1.2 * 2.4e-3 / 3.6e-4; // ½ ρ C_D A / m for the default leaf
     particles.par_chunk_map_mut(pool, CloudLeaves::CHUNK, |_, chunk| {
-        for (x, v) in chunk.iter_mut() {
-            let relative = wind.velocity(*x) - *v;
+        let positions: Vec<Vec3> = chunk.iter().map(|(x, _)| *x).collect();
+        let mut winds = Vec::with_capacity(chunk.len());
+        wind.velocities_at(&positions, wind.time(), &mut winds);
+        for ((x, v), u) in chunk.iter_mut().zip(winds) {
+            let relative = u - *v;
             *v += (Vec3::new(0.0, -9.81, 0.0) + c * relative.length() * relative) * DT;
             *x += *v * DT;
         }

@@ -47,11 +47,15 @@ fn paths(model: &FallModel) -> Vec<FallPath> {
         .collect()
 }
 
-/// Explicit drag particle: v += (g + c |u − v| (u − v)) dt, x += v dt.
+/// Explicit drag particle: v += (g + c |u − v| (u − v)) dt, x += v dt, the wind read with the
+/// crate's batched read (`velocities_at`, four points at a time in SIMD lanes).
 fn drag_particles(points: &mut [(Vec3, Vec3)], wind: &WindField, dt: f32) {
     let c = 0.5 * 1.2 * 1.2 * 2.4e-3 / 3.6e-4; // ½ ρ C_D A / m for the default leaf
-    for (x, v) in points.iter_mut() {
-        let relative = wind.velocity(*x) - *v;
+    let positions: Vec<Vec3> = points.iter().map(|(x, _)| *x).collect();
+    let mut winds = Vec::with_capacity(points.len());
+    wind.velocities_at(&positions, wind.time(), &mut winds);
+    for ((x, v), u) in points.iter_mut().zip(winds) {
+        let relative = u - *v;
         *v += (Vec3::new(0.0, -9.81, 0.0) + c * relative.length() * relative) * dt;
         *x += *v * dt;
     }
@@ -200,6 +204,23 @@ fn step(c: &mut Criterion) {
             BatchSize::LargeInput,
         )
     });
+    // All of them at once (`FallPath::advance_all`): the wind read and the usual steps four
+    // at a time in SIMD lanes, the same bits for each fall.
+    let mut outcomes = Vec::new();
+    group.bench_function("procedural_with_wind_lanes", |b| {
+        b.iter_batched_ref(
+            || fresh.clone(),
+            |paths| FallPath::advance_all(paths, &model, DT, Some(&wind), &tilt, &mut outcomes),
+            BatchSize::LargeInput,
+        )
+    });
+    group.bench_function("procedural_with_wind_warmed_lanes", |b| {
+        b.iter_batched_ref(
+            || warmed.clone(),
+            |paths| FallPath::advance_all(paths, &model, DT, Some(&wind), &tilt, &mut outcomes),
+            BatchSize::LargeInput,
+        )
+    });
     group.bench_function("procedural_still_air", |b| {
         b.iter_batched_ref(
             || fresh.clone(),
@@ -219,6 +240,13 @@ fn step(c: &mut Criterion) {
                 sum += wind.velocity(*p);
             }
             black_box(sum)
+        })
+    });
+    let mut read = Vec::new();
+    group.bench_function("wind_sampling_batched", |b| {
+        b.iter(|| {
+            wind.velocities_at(&points, wind.time(), &mut read);
+            black_box(&read);
         })
     });
     let particles: Vec<(Vec3, Vec3)> = points.iter().map(|p| (*p, Vec3::ZERO)).collect();

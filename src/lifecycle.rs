@@ -25,11 +25,16 @@ pub(crate) trait InvalidMarker: Component<Mutability = Mutable> + Sized {
     fn new(error: Self::Error) -> Self;
     /// The error it holds.
     fn error(&self) -> &Self::Error;
+    /// The field its error names (`"transform"` for a transform that cannot place the entity).
+    fn field(&self) -> &'static str;
 }
 
 /// Implements [`InvalidMarker`] for a tuple struct `Marker(pub Error)`.
 macro_rules! invalid_marker {
     ($marker:ty, $error:ty) => {
+        $crate::lifecycle::invalid_marker!($marker, $error, |e: &$error| e.field());
+    };
+    ($marker:ty, $error:ty, $field:expr) => {
         impl $crate::lifecycle::InvalidMarker for $marker {
             type Error = $error;
             fn new(error: $error) -> Self {
@@ -37,6 +42,9 @@ macro_rules! invalid_marker {
             }
             fn error(&self) -> &$error {
                 &self.0
+            }
+            fn field(&self) -> &'static str {
+                ($field)(&self.0)
             }
         }
     };
@@ -57,17 +65,37 @@ pub(crate) fn mark<I: InvalidMarker>(
     match outcome {
         Ok(()) => {
             if current.is_some() {
-                commands.entity(entity).remove::<I>();
+                commands.entity(entity).try_remove::<I>();
             }
         }
         Err(error) => {
             if current.is_none_or(|c| *c.error() != error) {
                 bevy::log::warn!("{subject} {entity}: {error}; {consequence}");
-                commands.entity(entity).insert(I::new(error));
+                commands.entity(entity).try_insert(I::new(error));
             }
         }
     }
 }
+
+/// [`mark`] for a check of the description alone: a marker for the transform (which a check
+/// made every step, [`mark_on_change`], put on and takes off) stays while the description is
+/// fine, so that an edit does not clear a marker whose cause is still there.
+pub(crate) fn mark_description<I: InvalidMarker>(
+    commands: &mut Commands,
+    entity: Entity,
+    outcome: Result<(), I::Error>,
+    current: Option<&I>,
+    subject: &str,
+    consequence: &str,
+) {
+    let placement = current.filter(|c| c.field() == TRANSFORM_FIELD);
+    if !(outcome.is_ok() && placement.is_some()) {
+        mark(commands, entity, outcome, current, subject, consequence);
+    }
+}
+
+/// The field a transform's error names ([`crate::guard::check_affine`]).
+const TRANSFORM_FIELD: &str = "transform";
 
 /// [`mark`] for a check made every step (a transform that cannot place the entity): the marker
 /// goes on when the check turns bad and off when it turns good, once each, however the error's
@@ -103,6 +131,9 @@ pub(crate) trait Described: Component + Sized {
     const SUBJECT: &'static str;
     /// What happens to an invalid one, for the log ("it does not fall").
     const CONSEQUENCE: &'static str;
+    /// Whether [`Self::set_up`] checks the entity's transform too; if not, a check made every
+    /// step does ([`mark_on_change`]) and a set-up leaves its marker alone.
+    const SET_UP_CHECKS_TRANSFORM: bool = true;
 
     /// The key of this description.
     fn key(&self) -> Self::Key;
@@ -152,10 +183,36 @@ pub(crate) fn set_up_changed<C: Described>(
     }
 }
 
+/// The system that sets up every `C` that has not been (one spawned while a resource its set-up
+/// needs was gone, such as the `FallModel`): its plugin runs it when that resource returns, so
+/// nothing is left idle without a marker. One refused before is checked again (and logged only
+/// if its error changed).
+pub(crate) fn set_up_pending<C: Described>(
+    mut commands: Commands,
+    mut described: Query<(Entity, Parts<C>), Without<SetUpFor<C>>>,
+    context: StaticSystemParam<C::Context>,
+) {
+    let mut context = context.into_inner();
+    for (entity, (c, memo, invalid, data)) in described.iter_mut() {
+        set_up(&mut commands, entity, c, memo, invalid, data, &mut context);
+    }
+}
+
 /// Adds `C`'s observer: set up on insertion. The plugin adds [`set_up_changed`] to its
 /// write-back systems.
 pub(crate) fn observe<C: Described>(app: &mut bevy::app::App) {
-    app.add_observer(set_up_on_insert::<C>);
+    app.add_observer(set_up_on_insert::<C>)
+        .add_observer(forget_on_remove::<C>);
+}
+
+/// The observer that takes `C`'s marker and memo with it when `C` is removed: a marker stands
+/// for the description it refused, so it goes with the description (as [`LodInvalid`] does).
+///
+/// [`LodInvalid`]: crate::lod::LodInvalid
+fn forget_on_remove<C: Described>(event: On<Remove, C>, mut commands: Commands) {
+    commands
+        .entity(event.entity)
+        .try_remove::<(C::Invalid, SetUpFor<C>)>();
 }
 
 /// The observer that sets `C` up the moment it is inserted (in the frame it was spawned).
@@ -203,12 +260,17 @@ fn set_up<C: Described>(
         // marker's error comparison (NaN-safe) keeps the log to one line.
         match &outcome {
             Ok(()) => {
-                commands.entity(entity).insert(SetUpFor::<C>(key));
+                commands.entity(entity).try_insert(SetUpFor::<C>(key));
             }
             Err(_) => {
-                commands.entity(entity).remove::<SetUpFor<C>>();
+                commands.entity(entity).try_remove::<SetUpFor<C>>();
             }
         }
+        let mark = if C::SET_UP_CHECKS_TRANSFORM {
+            mark::<C::Invalid>
+        } else {
+            mark_description::<C::Invalid>
+        };
         mark(
             commands,
             entity,

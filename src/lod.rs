@@ -129,7 +129,7 @@ impl LodTiers {
 #[reflect(Component, Debug)]
 pub struct LodInvalid(pub InvalidValue);
 
-crate::lifecycle::invalid_marker!(LodInvalid, InvalidValue);
+crate::lifecycle::invalid_marker!(LodInvalid, InvalidValue, |e: &InvalidValue| e.field);
 
 /// A component that carries [`LodTiers`] (`FallLod`, `ClothLod`).
 pub(crate) trait HasLodTiers: Component {
@@ -167,7 +167,7 @@ pub(crate) fn check_tiers<C: HasLodTiers>(
         if marked.contains(entity)
             && let Ok(mut e) = commands.get_entity(entity)
         {
-            e.remove::<LodInvalid>();
+            e.try_remove::<LodInvalid>();
         }
     }
 }

@@ -109,7 +109,14 @@ pub(crate) fn configure_sets(app: &mut App, schedule: InternedScheduleLabel) {
     app.register_type::<WindfallSchedule>()
         .configure_sets(
             schedule,
-            (WindfallSystems::Wind, WindfallSystems::Simulate).chain(),
+            // WriteBack runs in PostUpdate: in a simulation schedule of PostUpdate it must come
+            // after the step too (elsewhere the set is empty and the order holds by schedule).
+            (
+                WindfallSystems::Wind,
+                WindfallSystems::Simulate,
+                WindfallSystems::WriteBack,
+            )
+                .chain(),
         )
         .configure_sets(
             RunFixedMainLoop,

@@ -250,6 +250,8 @@ pub fn exit_code(failures: &LayoutFailures) -> AppExit {
     }
 }
 
+// A Bevy system: its parameters are what it reads, not a call site to shorten.
+#[allow(clippy::too_many_arguments)]
 fn frames_and_screenshot(
     mut commands: Commands,
     args: Res<ExampleArgs>,

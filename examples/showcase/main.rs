@@ -242,6 +242,7 @@ fn show_hud(
 }
 
 /// Saves each scene once it has rendered, then exits.
+#[allow(clippy::too_many_arguments)] // a Bevy system's parameters
 fn tour(
     mut commands: Commands,
     mut tour: ResMut<Tour>,

@@ -247,7 +247,7 @@ pub(super) fn step_bodies(
                 "it holds still",
             ),
             None => {
-                commands.entity(entity).remove::<AeroBodyInvalid>();
+                commands.entity(entity).try_remove::<AeroBodyInvalid>();
             }
         }
     }

@@ -120,6 +120,8 @@ impl Described for PhysicalCloth {
     type Context = Option<ResMut<'static, Assets<Mesh>>>;
     const SUBJECT: &'static str = "PhysicalCloth";
     const CONSEQUENCE: &'static str = "it is not simulated";
+    /// The transform is checked every step ([`AeroPlugin`](super::AeroPlugin)).
+    const SET_UP_CHECKS_TRANSFORM: bool = false;
 
     fn key(&self) -> PhysicalCloth {
         *self
@@ -144,16 +146,16 @@ impl Described for PhysicalCloth {
                 Ok(sim) => {
                     if let Some(meshes) = meshes {
                         let mesh = mesh::build(self.grid.rows, self.grid.columns, sim.positions());
-                        e.insert(Mesh3d(meshes.add(mesh)));
+                        e.try_insert(Mesh3d(meshes.add(mesh)));
                     }
-                    e.insert((
+                    e.try_insert((
                         PreviousPositions(sim.positions().to_vec()),
                         PhysicalClothState(sim),
                     ));
                     Ok(())
                 }
                 Err(error) => {
-                    e.remove::<PhysicalClothState>();
+                    e.try_remove::<PhysicalClothState>();
                     Err(error)
                 }
             },

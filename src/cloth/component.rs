@@ -223,6 +223,8 @@ impl Described for Cloth {
     type Context = Option<ResMut<'static, Assets<Mesh>>>;
     const SUBJECT: &'static str = "Cloth";
     const CONSEQUENCE: &'static str = "it is not shown";
+    /// The transform is checked every step, with the wind ([`ClothPlugin`](super::ClothPlugin)).
+    const SET_UP_CHECKS_TRANSFORM: bool = false;
 
     /// A change of grid, parameters or attachment rebuilds it; `follow_wind` alone does not.
     fn key(&self) -> Self::Key {
@@ -241,7 +243,7 @@ impl Described for Cloth {
         let sim = match ClothSim::new(self.grid, self.params, self.attachment) {
             Ok(sim) => sim,
             Err(error) => {
-                e.remove::<ClothState>();
+                e.try_remove::<ClothState>();
                 return Some(Err(error));
             }
         };
@@ -254,11 +256,11 @@ impl Described for Cloth {
                     }
                 }
                 None => {
-                    e.insert(Mesh3d(meshes.add(fresh)));
+                    e.try_insert(Mesh3d(meshes.add(fresh)));
                 }
             }
         }
-        e.insert(ClothState {
+        e.try_insert(ClothState {
             wind_steps_per_frame: self.params.wind_steps_per_frame,
             sim,
             yaw: 0.0,

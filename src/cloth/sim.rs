@@ -199,10 +199,10 @@ impl ClothSim {
     }
 
     /// Advances the noise by `dt` seconds at `wind_steps_per_frame` (|v|, noise steps per paper
-    /// frame) and the
-    /// parameters' swirl (|u|). Frozen wind only shifts (§4.1); evolving wind (the paper's non-frozen) also moves on one
-    /// time slice per paper frame (§4.2: slice f is the first slice shifted f |v| cells, so the
-    /// pattern both travels and changes). Non-finite input is ignored.
+    /// frame) and the parameters' swirl (|u|). Frozen wind only shifts (§4.1); evolving wind (the
+    /// paper's non-frozen) also moves on one time slice per paper frame (§4.2: slice f is the
+    /// first slice shifted f |v| cells, so the pattern both travels and changes). Non-finite
+    /// input is ignored.
     pub fn advance(&mut self, dt: f32, wind_steps_per_frame: f32) {
         let dt = f64::from(dt);
         let steps = f64::from(wind_steps_per_frame) * f64::from(ClothSim::PAPER_FPS) * dt;

@@ -104,7 +104,7 @@ fn draw_fall_paths(
     let config = gizmos.config_ext.clone();
     for (entity, state, transform, trail) in objects.iter_mut().take(config.max_objects) {
         let Some(mut trail) = trail else {
-            commands.entity(entity).insert(FallTrail::default());
+            commands.entity(entity).try_insert(FallTrail::default());
             continue;
         };
         let Some(path) = state.path().filter(|p| !p.landed()) else {

@@ -58,6 +58,8 @@ impl Plugin for FallPlugin {
                 PostUpdate,
                 (
                     (
+                        crate::lifecycle::set_up_pending::<FallingObject>
+                            .run_if(resource_added::<FallModel>),
                         crate::lifecycle::set_up_changed::<FallingObject>,
                         pose_objects,
                     )
@@ -146,10 +148,11 @@ struct ObjectStep<'a> {
 fn step_chunk(chunk: &mut [Fall], step: &ObjectStep) -> Vec<Landed> {
     let (clock, dt) = (step.clock, step.dt);
     let mut landings = Vec::new();
-    let (mut swings, mut curves) = (Vec::new(), Vec::new());
-    for (i, (entity, object, state, lod)) in chunk.iter_mut().enumerate() {
+    // The objects due this step, and where they are.
+    let (mut due, mut positions) = (Vec::new(), Vec::new());
+    for (i, (entity, _, state, lod)) in chunk.iter_mut().enumerate() {
         let state = &mut **state;
-        let Some(path) = state.path.as_mut() else {
+        let Some(path) = state.path.as_ref() else {
             continue;
         };
         // Its first step with levels of detail is taken at once (a fall just let go does
@@ -161,13 +164,25 @@ fn step_chunk(chunk: &mut [Fall], step: &ObjectStep) -> Vec<Landed> {
         let tier = lod
             .zip(step.focus)
             .map_or(1, |(l, f)| f.tier(&l.0, path.position()));
-        if !first && !clock.due(tier, entity.index_u32()) {
-            continue;
+        if first || clock.due(tier, entity.index_u32()) {
+            due.push((i, tier));
+            positions.push(path.position());
         }
-        // Resting objects feel the wind too: a strong enough one lifts them again.
-        let velocity = step
-            .wind
-            .map_or(Vec3::ZERO, |w| w.velocity(path.position()));
+    }
+    // Resting objects feel the wind too: a strong enough one lifts them again. Four points
+    // at a time.
+    let mut winds = Vec::new();
+    match step.wind {
+        Some(w) => w.velocities(&positions, &mut winds),
+        None => winds.resize(positions.len(), Vec3::ZERO),
+    }
+    let (mut swings, mut curves) = (Vec::new(), Vec::new());
+    for (&(i, tier), velocity) in due.iter().zip(winds) {
+        let (entity, object, state, lod) = &mut chunk[i];
+        let state = &mut **state;
+        let Some(path) = state.path.as_mut() else {
+            continue;
+        };
         let tilt = WindTilt::in_wind(object.wind_tilt, step.wind);
         let job = UsualJob::new(i, velocity, dt, tilt);
         if step.lanes && state.tier.is_none() && path.usual(job.dt) {

@@ -277,7 +277,7 @@ fn attach_visuals(
             extension: poses.clone(),
         });
         let mesh = meshes.add(cloud_mesh(&cloud.object, count as u32, &look));
-        commands.entity(entity).insert((
+        commands.entity(entity).try_insert((
             Mesh3d(mesh),
             MeshMaterial3d(material),
             NoFrustumCulling,

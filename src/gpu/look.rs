@@ -167,7 +167,7 @@ fn dress_objects(
             .clone();
         commands
             .entity(entity)
-            .insert((Mesh3d(mesh), MeshMaterial3d(material), wanted));
+            .try_insert((Mesh3d(mesh), MeshMaterial3d(material), wanted));
     }
 }
 
@@ -200,6 +200,6 @@ fn dress_cloths(
             .entry(key)
             .or_insert_with(|| materials.add(two_sided(color, false)))
             .clone();
-        commands.entity(entity).insert(MeshMaterial3d(fabric));
+        commands.entity(entity).try_insert(MeshMaterial3d(fabric));
     }
 }

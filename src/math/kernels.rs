@@ -179,8 +179,7 @@ pub(crate) fn atan2<L: Lane>(y: L, x: L) -> L {
 #[inline]
 fn asin_small<L: Lane>(a: L) -> L {
     let z = a * a;
-    let p = (((L::splat(4.216_32e-2) * z + L::splat(2.418_131_1e-2)) * z
-        + L::splat(4.547_002_6e-2))
+    let p = (((L::splat(4.216_32e-2) * z + L::splat(2.418_131e-2)) * z + L::splat(4.547_002_6e-2))
         * z
         + L::splat(7.495_300_3e-2))
         * z

@@ -34,5 +34,5 @@ mod synth;
 pub use error::SpectrumError;
 pub use fft::FftBackend;
 pub(crate) use grid::GridShape;
-pub(crate) use sample::{periodic_lerp, periodic_lerp_2d};
+pub(crate) use sample::{periodic_lerp, wrap};
 pub use synth::{Synthesizer, fbm, try_fbm};

@@ -12,7 +12,7 @@ use super::local::Placement;
 use super::shelter::{PlacedShelter, WindShelter, WindShelterInvalid};
 use super::source::{PlacedSource, WindSource, WindSourceInvalid};
 use crate::error::InvalidValue;
-use crate::lifecycle::{mark, mark_on_change};
+use crate::lifecycle::{mark_description, mark_on_change};
 
 /// Whether [`place_wind_sources`] has work: a field, and a source or shelter to place or placed
 /// ones to clear.
@@ -108,11 +108,11 @@ pub(super) fn restart_source(
     sources: Query<(&WindSource, Option<&WindSourceInvalid>)>,
 ) {
     if let Ok(mut e) = commands.get_entity(event.entity) {
-        e.remove::<SourceStart>();
+        e.try_remove::<SourceStart>();
     }
     if let Ok((source, invalid)) = sources.get(event.entity) {
         let outcome = source.validate();
-        mark(
+        mark_description(
             &mut commands,
             event.entity,
             outcome,
@@ -131,7 +131,7 @@ pub(super) fn check_shelter(
 ) {
     if let Ok((shelter, invalid)) = shelters.get(event.entity) {
         let outcome = shelter.validate();
-        mark(
+        mark_description(
             &mut commands,
             event.entity,
             outcome,
@@ -184,7 +184,7 @@ pub(super) fn place_wind_sources(
             Some(s) if s.finished => continue,
             Some(s) => s.at,
             None => {
-                commands.entity(entity).insert(SourceStart {
+                commands.entity(entity).try_insert(SourceStart {
                     at: started,
                     finished: false,
                 });
@@ -204,7 +204,7 @@ pub(super) fn place_wind_sources(
             NOTHING,
         );
         if source.finished(now - start) {
-            commands.entity(entity).insert(SourceStart {
+            commands.entity(entity).try_insert(SourceStart {
                 at: start,
                 finished: true,
             });

@@ -32,9 +32,10 @@ const ADDED_MASS_SHARE: f32 = 0.125;
 /// Relative stretch of a stretch edge (seen at the start of a sweep) above which the solver
 /// sweeps again past [`ParticleCloth::iterations`].
 const STRETCH_TOLERANCE: f32 = 0.05;
-/// Node masses a particle cloth accepts, kg: lighter nodes would make 1/m overflow the solver's
-/// rates, heavier ones lose every force to rounding.
-const MIN_NODE_MASS: f64 = 1e-12;
+/// Node masses a particle cloth accepts, kg: lighter nodes (a gram's hundredth) are driven by
+/// their drag and the constraints' rates past what an f32 substep resolves (1e-6 kg went NaN in
+/// still air within 5 steps), heavier ones lose every force to rounding.
+const MIN_NODE_MASS: f64 = 1e-5;
 const MAX_NODE_MASS: f64 = 1e9;
 
 /// A `rows × columns` grid of particles laid out like [`ClothSim`](crate::cloth::ClothSim)'s
@@ -102,6 +103,8 @@ pub struct ParticleCloth {
     scratch: Vec<f32>,
     /// The air's force on the cloth over the last step (mean), N.
     force: Vec3,
+    /// Time of steps shorter than [`ParticleCloth::MIN_STEP`] not simulated yet, s.
+    owed: f32,
     lambdas: Vec<f32>,
     wind: Vec<Vec3>,
     previous: Vec<Vec3>,
@@ -168,7 +171,7 @@ impl ParticleCloth {
             return Err(invalid(
                 "areal_density",
                 areal_density,
-                "each node's mass (areal_density × width × height / nodes) must be within 1e-12..1e9 kg",
+                "each node's mass (areal_density × width × height / nodes) must be within 1e-5..1e9 kg",
             ));
         }
         let node_mass = node_mass as f32;
@@ -231,6 +234,7 @@ impl ParticleCloth {
             grid,
             velocities: vec![Vec3::ZERO; n],
             previous: positions.clone(),
+            owed: 0.0,
             positions,
             inverse_mass,
             constraints,
@@ -306,10 +310,20 @@ impl ParticleCloth {
     /// Advances by `dt` under `gravity` in the fluid velocity `wind(p)` (local frame). A
     /// non-finite or non-positive `dt` or a non-finite `gravity` leaves the cloth as it is
     /// (the plugin reports such a cloth with [`PhysicalClothInvalid`](super::physical_cloth::PhysicalClothInvalid)).
+    /// Steps shorter than [`ParticleCloth::MIN_STEP`] are added to the next one.
     pub fn step(&mut self, dt: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
         if !(dt.is_finite() && dt > 0.0 && gravity.is_finite()) {
             return;
         }
+        // Velocities come from (x − x₀) / h: a sliver of a step would turn the constraints'
+        // small residual into a huge velocity (1e-9 s sent a settled flag's node to 2e6 m/s).
+        // Slivers are owed and simulated with the next step that makes them long enough.
+        let dt = dt + self.owed;
+        if dt < ParticleCloth::MIN_STEP {
+            self.owed = dt;
+            return;
+        }
+        self.owed = 0.0;
         let mut remaining = dt;
         self.force = Vec3::ZERO;
         let longest = dt / self.min_substeps.clamp(1, ParticleCloth::MAX_SUBSTEPS) as f32;
@@ -442,4 +456,7 @@ impl ParticleCloth {
 
     /// Most substeps per step.
     pub const MAX_SUBSTEPS: u32 = 64;
+
+    /// Shortest step simulated, s: a shorter one is added to the next ([`ParticleCloth::step`]).
+    pub const MIN_STEP: f32 = 1e-3;
 }

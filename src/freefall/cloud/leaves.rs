@@ -337,24 +337,33 @@ struct ChunkReport {
 fn step_chunk(chunk: &mut [Leaf], first: usize, ctx: &ChunkContext) -> ChunkReport {
     let mut report = ChunkReport::default();
     let step = ctx.step;
-    // Leaves whose step is a usual one (inside a piece, at full step, no easing) wait for the
-    // lanes, swings apart from curves: (index, wind, seconds since the last step, to the next).
-    let (mut swings, mut curves) = (Vec::new(), Vec::new());
-    for (i, leaf) in chunk.iter_mut().enumerate() {
+    // The leaves due this step (a leaf's tier says how often it is stepped: every 1, 2 or 4
+    // steps, the leaves of a tier taking their turns on different steps; a leaf just let go
+    // takes its first step at once and its next on its phase), and where they are.
+    let (mut due, mut positions) = (Vec::new(), Vec::new());
+    for (i, leaf) in chunk.iter().enumerate() {
         let position = leaf.path.position();
         let every = step.focus.map_or(1, |f| f.tier(&ctx.lod, position));
-        // Due on its phase of the tier's period (1, 2 or 4 steps): the leaves of a tier take
-        // their turns on different steps, and a change of tier never waits longer than 4 steps.
-        // (`every` is a power of two: the phase is a mask, not a division.) A leaf just let go
-        // takes its first step at once and its next on its phase.
         let index = (first + i) as u32;
         if !ctx.clock.due(every, index) && !leaf.tier.fresh() {
             report.resting += usize::from(leaf.path.landed());
             continue;
         }
-        let wind = step.wind.map_or(Vec3::ZERO, |w| w.velocity(position));
         // Its tier's next turn is this many steps on.
-        let next = ctx.clock.steps_to_next(every, index) as f32 * step.dt;
+        due.push((i, ctx.clock.steps_to_next(every, index) as f32 * step.dt));
+        positions.push(position);
+    }
+    // The wind where they are, four points at a time.
+    let mut winds = Vec::new();
+    match step.wind {
+        Some(w) => w.velocities(&positions, &mut winds),
+        None => winds.resize(positions.len(), Vec3::ZERO),
+    }
+    // Leaves whose step is a usual one (inside a piece, at full step, no easing) wait for the
+    // lanes, swings apart from curves; the others step now.
+    let (mut swings, mut curves) = (Vec::new(), Vec::new());
+    for (&(i, next), wind) in due.iter().zip(winds) {
+        let leaf = &mut chunk[i];
         let waited = leaf.tier.waited(ctx.clock.seconds);
         let usual = UsualJob {
             next,

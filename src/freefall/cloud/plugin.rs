@@ -79,7 +79,12 @@ impl Plugin for LeafCloudPlugin {
             .add_systems(
                 PostUpdate,
                 (
-                    crate::lifecycle::set_up_changed::<LeafCloud>
+                    (
+                        crate::lifecycle::set_up_pending::<LeafCloud>
+                            .run_if(resource_added::<FallModel>),
+                        crate::lifecycle::set_up_changed::<LeafCloud>,
+                    )
+                        .chain()
                         .run_if(any_with_component::<LeafCloud>),
                     pose_clouds.run_if(any_with_component::<LeafCloudState>),
                 )
@@ -100,8 +105,12 @@ impl Described for LeafCloud {
     const SUBJECT: &'static str = "LeafCloud";
     const CONSEQUENCE: &'static str = "it does not fall";
 
+    /// The cloud without its leaves' look: a new look redraws them, it does not let them go
+    /// again (as for a single [`FallingObject`](crate::freefall::FallingObject)).
     fn key(&self) -> LeafCloud {
-        self.clone()
+        let mut key = self.clone();
+        key.object.look = None;
+        key
     }
 
     /// Lets every leaf go; without a model (removed by the user) nothing is released.

@@ -62,6 +62,12 @@ pub(crate) fn log_ratio(height: f32, roughness: f32) -> f32 {
 /// and the one the lanes of a batched read take).
 #[inline]
 pub(crate) fn ln(x: f32) -> f32 {
+    ln_lanes(x)
+}
+
+/// [`ln`] for one number or for lanes.
+#[inline]
+pub(crate) fn ln_lanes<L: crate::math::lane::Lane>(x: L) -> L {
     crate::math::kernels::ln(x)
 }
 

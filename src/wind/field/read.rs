@@ -2,10 +2,13 @@
 //! sources, at one point or many.
 
 use bevy::math::Vec3;
+use wide::f32x4;
 
 use super::WindField;
 use super::profile;
-use crate::spectrum::{periodic_lerp, periodic_lerp_2d};
+use crate::math::geometry::V3;
+use crate::math::lane::Lane;
+use crate::spectrum::{periodic_lerp, wrap};
 use crate::wind::config::{SpatialMode, TemporalMode};
 
 impl WindField {
@@ -25,15 +28,36 @@ impl WindField {
         self.sample(position, f64::from(time))
     }
 
-    /// [`Self::velocity_at`] for many points: `out` is cleared and filled in order.
+    /// [`Self::velocity_at`] for many points: `out` is cleared and filled in order, four
+    /// points at a time in SIMD lanes (the log law, the interpolation and the mean wind), with
+    /// the bits [`Self::velocity_at`] gives each point.
     pub fn velocities_at(&self, positions: &[Vec3], time: f32, out: &mut Vec<Vec3>) {
+        self.read_many(positions, f64::from(time), out);
+    }
+
+    /// [`Self::velocity`] for many points (at the field's own clock), as [`Self::velocities_at`].
+    pub(crate) fn velocities(&self, positions: &[Vec3], out: &mut Vec<Vec3>) {
+        self.read_many(positions, self.time, out);
+    }
+
+    fn read_many(&self, positions: &[Vec3], time: f64, out: &mut Vec<Vec3>) {
         out.clear();
-        out.extend(positions.iter().map(|&p| self.sample(p, f64::from(time))));
+        out.reserve(positions.len());
+        let mut quads = positions.chunks_exact(4);
+        for quad in &mut quads {
+            let v = self.sample_lanes::<f32x4>(quad, time);
+            out.extend((0..4).map(|k| Vec3::new(v.x.get(k), v.y.get(k), v.z.get(k))));
+        }
+        out.extend(quads.remainder().iter().map(|&p| self.sample(p, time)));
     }
 
     /// The global field, calmed by every shelter.
     fn sheltered(&self, position: Vec3, time: f64) -> Vec3 {
-        let global = self.global(position, time);
+        self.shelter(position, self.global(position, time))
+    }
+
+    /// `global` at `position` calmed by every shelter.
+    fn shelter(&self, position: Vec3, global: Vec3) -> Vec3 {
         if self.shelters.is_empty() {
             return global;
         }
@@ -48,73 +72,141 @@ impl WindField {
 
     /// The global field (sheltered) plus every local source.
     fn sample(&self, position: Vec3, time: f64) -> Vec3 {
-        let global = self.sheltered(position, time);
-        if self.sources.is_empty() {
+        let v = self.sample_lanes::<f32>(&[position], time);
+        Vec3::new(v.x, v.y, v.z)
+    }
+
+    /// The global field (sheltered) plus every local source at `L::WIDTH` points: the lanes
+    /// take the log law, the interpolation and the mean wind; shelters and sources are added
+    /// point by point.
+    fn sample_lanes<L: Lane>(&self, points: &[Vec3], time: f64) -> V3<L> {
+        let global = self.global_lanes::<L>(points, time);
+        if self.shelters.is_empty() && self.sources.is_empty() {
             return global;
         }
-        let time = if time.is_finite() { time } else { self.time };
-        let p = position.into();
-        let local = self
-            .sources
-            .iter()
-            .fold(Vec3::ZERO, |sum, s| sum + s.velocity(p, time));
-        let total = global + local;
-        if total.is_finite() { total } else { global }
+        let local_time = if time.is_finite() { time } else { self.time };
+        let each = |k: usize| {
+            let g = Vec3::new(global.x.get(k), global.y.get(k), global.z.get(k));
+            let g = self.shelter(points[k], g);
+            if self.sources.is_empty() {
+                return g;
+            }
+            let p = points[k].into();
+            let local = self
+                .sources
+                .iter()
+                .fold(Vec3::ZERO, |sum, s| sum + s.velocity(p, local_time));
+            let total = g + local;
+            if total.is_finite() { total } else { g }
+        };
+        let v: [Vec3; 4] = std::array::from_fn(|k| if k < L::WIDTH { each(k) } else { Vec3::ZERO });
+        V3::new(
+            L::from_fn(|k| v[k].x),
+            L::from_fn(|k| v[k].y),
+            L::from_fn(|k| v[k].z),
+        )
     }
 
     /// The log-law mean wind plus turbulence (no sources).
     fn global(&self, position: Vec3, time: f64) -> Vec3 {
-        self.global_with(position, self.log_ratio(position.y), time)
+        let v = self.global_lanes::<f32>(&[position], time);
+        Vec3::new(v.x, v.y, v.z)
     }
 
-    /// max(0, ln(h/z0)) at `height`: the one logarithm of a read.
-    #[inline]
-    fn log_ratio(&self, height: f32) -> f32 {
-        if height > self.config.roughness {
-            (profile::ln(height.min(f32::MAX)) - self.log_roughness).max(0.0)
-        } else {
-            0.0
-        }
-    }
-
-    /// [`Self::global`] with the read's [`Self::log_ratio`] already taken. Kept out of line, the
-    /// logarithm's library call made by the small caller: compiled as one function with it,
-    /// 10 000 plane reads took 415 µs instead of 315 µs (`cargo bench --bench freefall --
-    /// wind_sampling_only`, the machine of `docs/performance.md`; the arithmetic is the same,
-    /// the compiler's register allocation is not).
-    #[inline(never)]
-    fn global_with(&self, position: Vec3, log_ratio: f32, time: f64) -> Vec3 {
+    /// The log-law mean wind plus turbulence (no shelters or sources) at `L::WIDTH` points.
+    fn global_lanes<L: Lane>(&self, points: &[Vec3], time: f64) -> V3<L> {
         let c = &self.config;
+        // max(0, ln(h/z0)): the read's one logarithm.
+        let h = L::from_fn(|k| points[k].y);
+        let above = h.gt(L::splat(c.roughness));
+        let height = L::select(h.lt(L::splat(f32::MAX)), h, L::splat(f32::MAX));
+        let ratio = profile::ln_lanes(height) - L::splat(self.log_roughness);
+        let ratio = L::select(ratio.gt(L::splat(0.0)), ratio, L::splat(0.0));
+        let log_ratio = L::select(above, ratio, L::splat(0.0));
         // Mean speed, turbulence scale and advection speed at this height.
-        let g = log_ratio * self.inv_log_reference; // eq. 14
+        let g = log_ratio * L::splat(self.inv_log_reference); // eq. 14
+        let reference = L::splat(c.reference_speed);
+        let mean = reference * g;
         // `travel`: how the pattern's travel at this height compares with the reference's.
-        let (mean, scale, advection, travel) = match c.spatial {
-            SpatialMode::Plane => (c.reference_speed * g, g, c.reference_speed, 1.0),
+        let (scale, advection, travel) = match c.spatial {
+            SpatialMode::Plane => (g, reference, L::splat(1.0)),
             SpatialMode::Volume { .. } => {
-                let mean = c.reference_speed * g; // = (u*/κ) ln(h/z0), eq. 10
-                (mean, g.min(1.0), mean, g)
+                let one = L::splat(1.0);
+                (L::select(g.lt(one), g, one), mean, g) // mean = (u*/κ) ln(h/z0), eq. 10
             }
         };
         let time = if time.is_finite() { time } else { 0.0 };
         // Taylor's hypothesis: the pattern translates with the mean wind, by ∫ U dt (the travel
         // booked before the last change of speed or direction, plus U × the time since).
-        let shift = f64::from(advection) * (time - self.drift_since);
-        let base = self.drift_base * f64::from(travel);
-        let per_cell = self.per_cell;
-        let x = (f64::from(position.x) - (base.x + f64::from(self.along.x) * shift)) * per_cell;
-        let z = (f64::from(position.z) - (base.y + f64::from(self.along.z) * shift)) * per_cell;
+        let coordinates = |k: usize| {
+            let shift = f64::from(advection.get(k)) * (time - self.drift_since);
+            let base = self.drift_base * f64::from(travel.get(k));
+            let p = points[k];
+            let x = (f64::from(p.x) - (base.x + f64::from(self.along.x) * shift)) * self.per_cell;
+            let z = (f64::from(p.z) - (base.y + f64::from(self.along.z) * shift)) * self.per_cell;
+            (x, z)
+        };
         let n = if self.shape.dims().len() == 2 {
-            periodic_lerp_2d(&self.shape, &self.nodes, x, z)
+            self.plane_lanes::<L>(&coordinates)
         } else {
-            self.sample_nd(position, time, x, z)
-        } * scale
-            * self.sigma();
-        let wind = self.along * (mean + n.x) + self.across * n.y + Vec3::Y * n.z;
+            let noise: [Vec3; 4] = std::array::from_fn(|k| {
+                if k < L::WIDTH {
+                    let (x, z) = coordinates(k);
+                    self.sample_nd(points[k], time, x, z)
+                } else {
+                    Vec3::ZERO
+                }
+            });
+            V3::new(
+                L::from_fn(|k| noise[k].x),
+                L::from_fn(|k| noise[k].y),
+                L::from_fn(|k| noise[k].z),
+            )
+        };
+        let sigma = self.sigma();
+        let n = V3::new(
+            n.x * scale * L::splat(sigma.x),
+            n.y * scale * L::splat(sigma.y),
+            n.z * scale * L::splat(sigma.z),
+        );
+        let (along, across) = (self.along, self.across);
+        let u = mean + n.x;
+        let wind = V3::new(
+            (L::splat(along.x) * u + L::splat(across.x) * n.y) + L::splat(0.0) * n.z,
+            (L::splat(along.y) * u + L::splat(across.y) * n.y) + L::splat(1.0) * n.z,
+            (L::splat(along.z) * u + L::splat(across.z) * n.y) + L::splat(0.0) * n.z,
+        );
         if c.pulse.is_active() {
-            wind * c.pulse.factor(time)
+            wind.scale(L::splat(c.pulse.factor(time)))
         } else {
             wind
         }
+    }
+
+    /// The turbulence of a 2-D grid at each lane's node coordinates: the periodic wraps and the
+    /// four nodes point by point, the bilinear weights in lanes.
+    fn plane_lanes<L: Lane>(&self, coordinates: &dyn Fn(usize) -> (f64, f64)) -> V3<L> {
+        let dims = self.shape.dims();
+        let corners: [([usize; 4], f32, f32); 4] = std::array::from_fn(|k| {
+            if k >= L::WIDTH {
+                return ([0; 4], 0.0, 0.0);
+            }
+            let (x, z) = coordinates(k);
+            let (i0, i1, fx) = wrap(x, dims[0]);
+            let (j0, j1, fy) = wrap(z, dims[1]);
+            let (r0, r1) = (i0 * dims[1], i1 * dims[1]);
+            ([r0 + j0, r0 + j1, r1 + j0, r1 + j1], fx, fy)
+        });
+        let node = |corner: usize| {
+            let v = |axis: usize| L::from_fn(|k| self.nodes[corners[k].0[corner]][axis]);
+            V3::new(v(0), v(1), v(2))
+        };
+        let fx = L::from_fn(|k| corners[k].1);
+        let fy = L::from_fn(|k| corners[k].2);
+        let (gx, gy) = (L::splat(1.0) - fx, L::splat(1.0) - fy);
+        let low = node(0).scale(gy).add(node(1).scale(fy));
+        let high = node(2).scale(gy).add(node(3).scale(fy));
+        low.scale(gx).add(high.scale(fx))
     }
 
     /// The turbulence read on a 3- or 4-D grid.

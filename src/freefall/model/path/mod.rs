@@ -267,7 +267,7 @@ impl FallPath {
         if self.usual(dt) {
             // Inside one piece: the step lanes take too, through the same code.
             let mut hot = self.hot(tilt);
-            hot.piece_time = hot.piece_time + dt;
+            hot.piece_time += dt;
             let (end, turn) = self.piece.sample(model.database(), hot.piece_time);
             let made = usual::advance(&mut hot, V3::of(end), Q::of(turn), dt, V3::of(wind));
             return if self.take_usual(&hot, &made, 0, dt) {

@@ -9,14 +9,16 @@
 
 use bevy::math::{Quat, Vec3};
 
+use super::super::FallModel;
 use super::super::database::TrajectoryDatabase;
 use super::super::piece::Piece;
 use super::super::piece::sample::{CurveLanes, SwingLanes, curve_sample, swing_sample};
 use super::super::release::FallRelease;
 use super::super::tilt::{WindTilt, wind_tilt};
-use super::{FallPath, MIN_DRIFT};
+use super::{FallPath, MIN_DRIFT, StepOutcome};
 use crate::math::geometry::{Q, V3};
 use crate::math::lane::Lane;
+use crate::wind::WindField;
 
 /// What the usual step reads and writes of each fall, lane by lane.
 #[derive(Clone, Copy)]
@@ -292,4 +294,56 @@ fn step_usual<L: Lane, const N: usize>(
         landed[k] = path.take_usual(&hot, &made, k, dts[k]);
     }
     landed
+}
+
+impl FallPath {
+    /// Advances every fall of `paths` by `dt` seconds in `wind` (`None`: still fluid) at the
+    /// field's own clock, as [`FallPath::advance`] advances one (the same bits for each fall),
+    /// but four at a time: the wind is read in SIMD lanes ([`WindField::velocities_at`]'s
+    /// batched read) and the usual steps (inside a piece) are taken in lanes; what lanes cannot
+    /// share (a new piece, the Markov step, a swing search) one fall at a time. `outcomes` is
+    /// cleared and filled in order.
+    pub fn advance_all(
+        paths: &mut [FallPath],
+        model: &FallModel,
+        dt: f32,
+        wind: Option<&WindField>,
+        tilt: &WindTilt,
+        outcomes: &mut Vec<StepOutcome>,
+    ) {
+        let positions: Vec<Vec3> = paths.iter().map(FallPath::position).collect();
+        let mut winds = Vec::new();
+        match wind {
+            Some(w) => w.velocities(&positions, &mut winds),
+            None => winds.resize(paths.len(), Vec3::ZERO),
+        }
+        outcomes.clear();
+        outcomes.resize(paths.len(), StepOutcome::Falling);
+        let (mut swings, mut curves) = (Vec::new(), Vec::new());
+        let lanes = crate::math::lanes_enabled();
+        for (i, (path, wind)) in paths.iter_mut().zip(winds).enumerate() {
+            let job = UsualJob::new(i, wind, dt, *tilt);
+            if lanes && path.usual(job.dt) {
+                match path.piece {
+                    Piece::Swing { .. } => swings.push(job),
+                    Piece::Curve { .. } => curves.push(job),
+                }
+            } else {
+                outcomes[i] = path.advance(model, dt, wind, tilt);
+            }
+        }
+        for jobs in [&swings, &curves] {
+            run_usual(
+                paths,
+                jobs,
+                |p| p,
+                model.database(),
+                |_, job, landed| {
+                    if landed {
+                        outcomes[job.index] = StepOutcome::Landed;
+                    }
+                },
+            );
+        }
+    }
 }

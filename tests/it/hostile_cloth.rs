@@ -1,0 +1,175 @@
+//! Hostile input, round 4, items 10 and 11: a particle cloth's steps of any accepted length, and
+//! the lightest nodes its constructor accepts.
+
+use bevy::prelude::*;
+use bevy_windfall::aero::{AeroCoefficients, ParticleCloth, Pinning};
+use bevy_windfall::cloth::ClothGrid;
+
+const G: Vec3 = Vec3::new(0.0, -9.81, 0.0);
+
+fn flag() -> ParticleCloth {
+    let grid = ClothGrid {
+        rows: 8,
+        columns: 12,
+        width: 1.5,
+        height: 1.0,
+    };
+    ParticleCloth::new(grid, 0.2, AeroCoefficients::default(), Pinning::PoleColumn).unwrap()
+}
+
+fn fastest(cloth: &ParticleCloth) -> f32 {
+    cloth
+        .velocities()
+        .iter()
+        .map(|v| v.length())
+        .fold(0.0, f32::max)
+}
+
+/// Item 10: after settling in 5 m/s, steps of 1e-9 and 1e-6 s, and frame times alternating
+/// between 1/60 s and 0.1 ms, move the flag no faster than steady frames do (they reached
+/// 2e6 m/s and 161 220 m/s).
+#[test]
+fn slivers_of_steps_add_no_energy() {
+    let wind = |_: Vec3| Vec3::new(5.0, 0.0, 0.0);
+    let mut steady = flag();
+    for _ in 0..120 {
+        steady.step(1.0 / 60.0, G, &wind);
+    }
+    let mut steady_peak = 0.0f32;
+    let mut mixed = steady.clone();
+    for _ in 0..60 {
+        steady.step(1.0 / 60.0, G, &wind);
+        steady_peak = steady_peak.max(fastest(&steady));
+    }
+    for tiny in [1e-9, 1e-6, 1e-4] {
+        let mut sliver = mixed.clone();
+        let before = sliver.energy(G);
+        sliver.step(tiny, G, &wind);
+        assert!(
+            fastest(&sliver) <= steady_peak,
+            "a step of {tiny} s: {} m/s against {steady_peak} m/s steady",
+            fastest(&sliver)
+        );
+        // In still air (no wind to feed it) a sliver adds no energy.
+        sliver.step(tiny, G, &|_| Vec3::ZERO);
+        assert!(sliver.energy(G) <= before + 1e-6 * before.abs().max(1.0));
+    }
+    let mut peak = 0.0f32;
+    for frame in 0..120 {
+        let dt = if frame % 2 == 0 { 1.0 / 60.0 } else { 1e-4 };
+        mixed.step(dt, G, &wind);
+        peak = peak.max(fastest(&mixed));
+        assert!(mixed.positions().iter().all(|p| p.is_finite()));
+    }
+    assert!(
+        peak <= 2.0 * steady_peak,
+        "alternating frames: {peak} m/s against {steady_peak} m/s steady"
+    );
+}
+
+/// Item 11: node masses below 1e-5 kg are refused by name; from there up the cloth stays finite
+/// in still air and in a gale.
+#[test]
+fn the_lightest_nodes_are_refused_or_stay_finite() {
+    let grid = ClothGrid {
+        rows: 4,
+        columns: 6,
+        width: 1.0,
+        height: 0.5,
+    };
+    let nodes = 24.0;
+    let area = 0.5;
+    for node_mass in [1e-12f32, 1e-9, 1e-6, 9e-6] {
+        let refused = ParticleCloth::new(
+            grid,
+            node_mass * nodes / area,
+            AeroCoefficients::default(),
+            Pinning::PoleColumn,
+        )
+        .unwrap_err();
+        assert_eq!(refused.field(), "areal_density", "{node_mass} kg");
+    }
+    for node_mass in [1.1e-5f32, 3e-5, 1e-4, 1e-3] {
+        for speed in [0.0, 5.0, 30.0] {
+            let mut cloth = ParticleCloth::new(
+                grid,
+                node_mass * nodes / area,
+                AeroCoefficients::default(),
+                Pinning::PoleColumn,
+            )
+            .unwrap();
+            for _ in 0..120 {
+                cloth.step(1.0 / 60.0, G, &|_| Vec3::new(speed, 0.0, 1.0));
+            }
+            assert!(
+                cloth.positions().iter().all(|p| p.is_finite()),
+                "{node_mass} kg in {speed} m/s"
+            );
+        }
+    }
+}
+
+/// The largest relative stretch of a structural edge (along the yarns and between them).
+fn stretch(cloth: &ParticleCloth, grid: ClothGrid) -> f32 {
+    let p = cloth.positions();
+    let (rows, columns) = (grid.rows, grid.columns);
+    let dx = grid.width / (columns - 1) as f32;
+    let dy = if rows > 1 {
+        grid.height / (rows - 1) as f32
+    } else {
+        1.0
+    };
+    let mut most = 0.0f32;
+    for k in 0..rows {
+        for j in 0..columns {
+            let i = k * columns + j;
+            if j + 1 < columns {
+                most = most.max(p[i].distance(p[i + 1]) / dx - 1.0);
+            }
+            if k + 1 < rows {
+                most = most.max(p[i].distance(p[i + columns]) / dy - 1.0);
+            }
+        }
+    }
+    most
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 64, ..Default::default() })]
+
+    /// Any grid, node mass, wind up to a storm (35 m/s), gravity up to 3 g and any sequence of
+    /// frame times from a microsecond to a quarter second: the nodes stay finite, no edge
+    /// stretches more than 10 %, and in still air the cloth never gains energy.
+    #[test]
+    fn particle_cloth_holds_for_any_grid_mass_wind_gravity_and_frames(
+        rows in 2usize..8,
+        columns in 2usize..10,
+        node_mass in 1e-3f32..0.1,
+        wind in (0.0f32..35.0, -1.0f32..1.0),
+        gravity in 0.0f32..30.0,
+        frames in proptest::collection::vec(1e-6f32..0.25, 1..40),
+        top_row in proptest::prelude::any::<bool>(),
+    ) {
+        let grid = ClothGrid { rows, columns, width: 1.2, height: 0.8 };
+        let areal = node_mass * (rows * columns) as f32 / (grid.width * grid.height);
+        let pinning = if top_row { Pinning::TopRow } else { Pinning::PoleColumn };
+        let g = Vec3::new(0.0, -gravity, 0.0);
+        let mut cloth = ParticleCloth::new(grid, areal, AeroCoefficients::default(), pinning).unwrap();
+        let mut still = cloth.clone();
+        let u = Vec3::new(wind.0, 0.0, wind.0 * wind.1);
+        // Released from rest, the cloth only loses energy in still air; the constraints'
+        // projection may move it by a thousandth of its weight times its size.
+        let start = still.energy(g);
+        let mass = node_mass * (rows * columns) as f32;
+        let slack = 1e-3 * mass * gravity.max(1.0) * (grid.width + grid.height);
+        for &dt in &frames {
+            cloth.step(dt, g, &|_| u);
+            proptest::prop_assert!(cloth.positions().iter().all(|p| p.is_finite()));
+            let s = stretch(&cloth, grid);
+            proptest::prop_assert!(s <= 0.1, "stretch {s} after a step of {dt} s");
+            still.step(dt, g, &|_| Vec3::ZERO);
+            let e = still.energy(g);
+            proptest::prop_assert!(e <= start + slack, "energy {start} → {e} J in still air, step {dt} s");
+        }
+    }
+}
