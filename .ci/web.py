@@ -149,6 +149,8 @@ def main():
     ap.add_argument("--expect", default="", help="comma-separated file names")
     ap.add_argument("--expect-notice", default=None,
                     help="wait for the page's notice to show this text instead of files")
+    ap.add_argument("--expect-console", default=None,
+                    help="also wait for a console line with this text (the tour's fingerprint)")
     ap.add_argument("--timeout", type=float, default=600, help="seconds")
     ap.add_argument("--webgl2", action="store_true", help="no WebGPU flags: WebGL2 fallback")
     ap.add_argument("--viewport", default="640x360", help="the page's size, WxH")
@@ -237,6 +239,7 @@ def run(browser, port, out, expected, args, say):
     sizes = {}          # file name -> (size, since when), for a download without events
     requests = {}       # request id -> url, for the bytes each file took on the wire
     errors = []         # console errors and exceptions: a clean page has none
+    console_seen = args.expect_console is None  # the console line waited for, if any
     states = []         # the indicator's states in order ("loading: ...", "drawing")
     deadline, next_report, next_state = START + args.timeout, time.monotonic() + 30, 0
     while True:
@@ -247,6 +250,8 @@ def run(browser, port, out, expected, args, say):
         method, p = event.get("method"), event.get("params", {})
         if (line := console_line(event)) is not None:
             say(line)
+            if args.expect_console is not None and args.expect_console in line:
+                console_seen = True
             if line.startswith(("exception:", "console.error:", "log.error:")):
                 errors.append(line)
         elif method == "Page.loadEventFired" and event.get("sessionId") == session:
@@ -292,7 +297,7 @@ def run(browser, port, out, expected, args, say):
                 done.append(n)
         notice = args.expect_notice is not None and any(
             "notice: " in s and args.expect_notice in s.split("notice: ", 1)[1] for s in states)
-        if (expected and len(done) == len(expected)) or notice:
+        if (expected and len(done) == len(expected) and console_seen) or notice:
             if notice:
                 time.sleep(1)
                 page_png("page_notice.png")
