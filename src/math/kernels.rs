@@ -66,11 +66,29 @@ pub(crate) fn sin_cos<L: Lane>(x: L) -> (L, L) {
 /// [`sin_cos`] for |x| ≤ 10⁴ (NaN and infinities give NaN).
 #[inline]
 fn sin_cos_near<L: Lane>(x: L) -> (L, L) {
+    // Within ±0.75 (most calls: half angles of tilts and turns) the reduction below leaves x
+    // as it is (k = 0, r = x exactly, no turn or sign): the polynomials alone, the same bits.
+    // (Not up to π/4 itself: there x · 2/π may round to ½ and beyond.) NaN goes either way.
+    if !L::any(x.abs().gt(L::splat(0.75))) {
+        return sin_cos_poly(x);
+    }
     let k = round(x * L::splat(2.0 / PI));
     let r = (((x - k * L::splat(PIO2_1)) - k * L::splat(PIO2_2)) - k * L::splat(PIO2_3))
         - k * L::splat(PIO2_4);
+    let (s, c) = sin_cos_poly(r);
+    // The quadrant k mod 4 turns and signs them.
+    let q = k - L::splat(4.0) * floor(k * L::splat(0.25));
+    let odd = (q - L::splat(2.0) * floor(q * L::splat(0.5))).eq(L::splat(1.0));
+    let (sin, cos) = (L::select(odd, c, s), L::select(odd, s, c));
+    let sin = L::select(q.ge(L::splat(2.0)), -sin, sin);
+    let flip_cos = L::or(q.eq(L::splat(1.0)), q.eq(L::splat(2.0)));
+    (sin, L::select(flip_cos, -cos, cos))
+}
+
+/// Cephes sinf and cosf on [−π/4, π/4].
+#[inline]
+fn sin_cos_poly<L: Lane>(r: L) -> (L, L) {
     let z = r * r;
-    // Cephes sinf and cosf on [−π/4, π/4].
     let s = ((L::splat(-1.951_529_6e-4) * z + L::splat(8.332_161e-3)) * z
         + L::splat(-1.666_665_5e-1))
         * z
@@ -82,13 +100,7 @@ fn sin_cos_near<L: Lane>(x: L) -> (L, L) {
         * z
         - L::splat(0.5) * z
         + L::splat(1.0);
-    // The quadrant k mod 4 turns and signs them.
-    let q = k - L::splat(4.0) * floor(k * L::splat(0.25));
-    let odd = (q - L::splat(2.0) * floor(q * L::splat(0.5))).eq(L::splat(1.0));
-    let (sin, cos) = (L::select(odd, c, s), L::select(odd, s, c));
-    let sin = L::select(q.ge(L::splat(2.0)), -sin, sin);
-    let flip_cos = L::or(q.eq(L::splat(1.0)), q.eq(L::splat(2.0)));
-    (sin, L::select(flip_cos, -cos, cos))
+    (s, c)
 }
 
 /// ln x: within 1 ulp for every positive finite x (subnormals included); 0 gives −∞, +∞

@@ -153,11 +153,11 @@ fn a_source_inserted_again_on_a_nan_transform_is_reported_once() {
     let fan = WindSource::fan(10.0, 0.4, 3.0);
     let entity = app
         .world_mut()
-        .spawn((fan.clone(), Transform::from_xyz(f32::NAN, 1.0, 0.0)))
+        .spawn((fan, Transform::from_xyz(f32::NAN, 1.0, 0.0)))
         .id();
     for _ in 0..7 {
         app.update();
-        app.world_mut().entity_mut(entity).insert(fan.clone());
+        app.world_mut().entity_mut(entity).insert(fan);
     }
     app.update();
     assert!(app.world().get::<WindSourceInvalid>(entity).is_some());
@@ -428,6 +428,9 @@ fn markers(e: &EntityRef) -> [bool; 4] {
     ]
 }
 
+/// A slot's entity and the description it has now: (kind, valid), or none.
+type Slot = (Entity, Option<(usize, bool)>);
+
 fn run_sequence(schedule: usize, ops: &[(usize, Op)]) {
     let mut app = headless_app_with_meshes();
     match schedule {
@@ -437,7 +440,7 @@ fn run_sequence(schedule: usize, ops: &[(usize, Op)]) {
     };
     ready(&mut app);
     let place = Transform::from_xyz(0.0, 4.0, 0.0);
-    let mut slots: Vec<Option<(Entity, Option<(usize, bool)>)>> = vec![None; 3];
+    let mut slots: Vec<Option<Slot>> = vec![None; 3];
     for (n, &(slot, op)) in ops.iter().enumerate() {
         let n = n as u32;
         let world = app.world_mut();
