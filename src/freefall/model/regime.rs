@@ -29,7 +29,7 @@ pub enum PrimitiveMotion {
 impl PrimitiveMotion {
     /// The main motion of an object with Reynolds number `reynolds` and dimensionless moment of
     /// inertia `inertia`: the region of the phase diagram (Fig. 2 of the free-fall paper,
-    /// [`PHASE_DIAGRAM`]) they fall in. NaN or negative values count as 0.
+    /// its table of regions) they fall in. NaN or negative values count as 0.
     pub fn classify(reynolds: f32, inertia: f32) -> Self {
         let re = if reynolds > 0.0 { reynolds } else { 0.0 };
         let i = if inertia > 0.0 { inertia } else { 0.0 };

@@ -41,8 +41,8 @@ impl FallRelease {
     /// The fields are named `release.position`, ... ; the [`FallPlugin`] releases from the
     /// entity's `Transform` and [`FallSettings::ground_height`].
     ///
-    /// [`FallPlugin`]: super::FallPlugin
-    /// [`FallSettings::ground_height`]: super::object::FallSettings::ground_height
+    /// [`FallPlugin`]: crate::freefall::FallPlugin
+    /// [`FallSettings::ground_height`]: crate::freefall::FallSettings::ground_height
     pub fn validate(&self) -> Result<(), FallError> {
         let invalid = |field, value, reason| {
             FallError::Invalid(InvalidValue {
