@@ -8,16 +8,12 @@ use bevy::tasks::{ParallelSliceMut, TaskPool};
 
 use super::CloudRegion;
 use crate::freefall::lod::{FallClock, TierClock};
-use crate::freefall::model::FallModel;
-use crate::freefall::model::markov::BoundedChain;
-use crate::freefall::model::motion::FallScales;
-use crate::freefall::model::path::usual::{self, UsualJob};
-use crate::freefall::model::path::{FallPath, StepOutcome, WindTilt};
-use crate::freefall::model::piece::Piece;
-use crate::freefall::model::random::FallRng;
-use crate::freefall::model::release::FallRelease;
-use crate::lod::Focus;
-use crate::lod::LodTiers;
+use crate::freefall::model::path::{FallPath, StepOutcome, WindTilt, usual, usual::UsualJob};
+use crate::freefall::model::{
+    FallModel, markov::BoundedChain, motion::FallScales, piece::Piece, random::FallRng,
+    release::FallRelease,
+};
+use crate::lod::{Focus, LodTiers};
 use crate::math::geometry::{Q, V3};
 use crate::wind::WindField;
 
