@@ -144,6 +144,34 @@ fn added_mass(grid: ClothGrid) -> f32 {
     per_area * grid.width * grid.height / (grid.rows * grid.columns) as f32
 }
 
+/// A 1.2 × 0.8 m cloth of `rows × columns` nodes of `node_mass` kg, pinned by its top row or
+/// its pole column, and the wind `speed` m/s at `angle` rad across its plane.
+fn random_cloth(
+    (rows, columns): (usize, usize),
+    node_mass: f32,
+    top_row: bool,
+    (speed, angle): (f32, f32),
+) -> (ClothGrid, ParticleCloth, Vec3) {
+    let grid = ClothGrid {
+        rows,
+        columns,
+        width: 1.2,
+        height: 0.8,
+    };
+    let areal = node_mass * (rows * columns) as f32 / (grid.width * grid.height);
+    let pinning = if top_row {
+        Pinning::TopRow
+    } else {
+        Pinning::PoleColumn
+    };
+    let cloth = ParticleCloth::new(grid, areal, AeroCoefficients::default(), pinning).unwrap();
+    (
+        grid,
+        cloth,
+        speed * Vec3::new(angle.cos(), 0.0, angle.sin()),
+    )
+}
+
 proptest::proptest! {
     // A fixed seed: CI runs the same 64 cases each time (the wider random sweep behind the
     // ranges below, 20 000 cloths, is in docs/testing.md).
@@ -171,13 +199,9 @@ proptest::proptest! {
         top_row in proptest::prelude::any::<bool>(),
     ) {
         let node_mass = 10f32.powf(log_mass);
-        let grid = ClothGrid { rows, columns, width: 1.2, height: 0.8 };
-        let areal = node_mass * (rows * columns) as f32 / (grid.width * grid.height);
-        let pinning = if top_row { Pinning::TopRow } else { Pinning::PoleColumn };
+        let (grid, mut cloth, u) = random_cloth((rows, columns), node_mass, top_row, wind);
         let g = Vec3::new(0.0, -gravity, 0.0);
-        let mut cloth = ParticleCloth::new(grid, areal, AeroCoefficients::default(), pinning).unwrap();
         let mut still = cloth.clone();
-        let u = wind.0 * Vec3::new(wind.1.cos(), 0.0, wind.1.sin());
         // Released from rest in still air, the cloth only loses energy (to within a hundredth of
         // its weight times its size: the projection's first-order error).
         let start = still.energy(g);
@@ -214,13 +238,8 @@ proptest::proptest! {
         frames in proptest::collection::vec(1e-6f32..(1.0 / 30.0), 1..40),
         top_row in proptest::prelude::any::<bool>(),
     ) {
-        let node_mass = 10f32.powf(log_mass);
-        let grid = ClothGrid { rows, columns, width: 1.2, height: 0.8 };
-        let areal = node_mass * (rows * columns) as f32 / (grid.width * grid.height);
-        let pinning = if top_row { Pinning::TopRow } else { Pinning::PoleColumn };
+        let (_, mut cloth, u) = random_cloth((rows, columns), 10f32.powf(log_mass), top_row, wind);
         let g = Vec3::new(0.0, -gravity, 0.0);
-        let mut cloth = ParticleCloth::new(grid, areal, AeroCoefficients::default(), pinning).unwrap();
-        let u = wind.0 * Vec3::new(wind.1.cos(), 0.0, wind.1.sin());
         for &dt in &frames {
             cloth.step(dt, g, &|_| u);
             proptest::prop_assert!(cloth.positions().iter().all(|p| p.is_finite()), "{dt} s");
