@@ -59,7 +59,8 @@ fn faces(c: &mut Criterion) {
         1,
         Vec3::new(3.0, 8.0, 2.0),
         f32::NEG_INFINITY,
-    );
+    )
+    .expect("a release within bounds");
     let tilt = WindTilt {
         max_angle: 0.6,
         reference_speed: 4.0,

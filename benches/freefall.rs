@@ -10,7 +10,7 @@ use std::time::Duration;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_windfall::freefall::{
-    FallLod, FallModel, FallPath, FallPlugin, FallSettings, FallState, FallingObject, WindTilt,
+    FallLod, FallModel, FallPath, FallPlugin, FallSettings, FallStore, FallingObject, WindTilt,
 };
 use bevy_windfall::lod::LodFocus;
 use bevy_windfall::wind::{WindConfig, WindField, WindPlugin};
@@ -43,6 +43,7 @@ fn paths(model: &FallModel) -> Vec<FallPath> {
                 release_point(i),
                 f32::NEG_INFINITY,
             )
+            .expect("a release within bounds")
         })
         .collect()
 }
@@ -112,10 +113,11 @@ fn falling_app_of(objects: usize, lod: bool, wind: bool) -> App {
     }
     // Every object falls (an invalid one would make the figure meaningless: it is not
     // stepped).
-    let mut states = app.world_mut().query::<&FallState>();
-    let falling = states
-        .iter(app.world())
-        .filter(|s| s.path().is_some_and(|p| !p.landed()))
+    let falling = app
+        .world()
+        .resource::<FallStore>()
+        .falls()
+        .filter(|(_, p)| !p.landed())
         .count();
     assert_eq!(falling, objects, "every object must be falling");
     app
@@ -123,10 +125,11 @@ fn falling_app_of(objects: usize, lod: bool, wind: bool) -> App {
 
 /// After a bench: every object is still well above the roughness height (in the wind).
 fn assert_aloft(app: &mut App) {
-    let mut states = app.world_mut().query::<&FallState>();
-    let lowest = states
-        .iter(app.world())
-        .filter_map(|s| s.path().map(|p| p.position().y))
+    let lowest = app
+        .world()
+        .resource::<FallStore>()
+        .falls()
+        .map(|(_, p)| p.position().y)
         .fold(f32::INFINITY, f32::min);
     assert!(
         lowest > 10.0,
@@ -201,23 +204,6 @@ fn step(c: &mut Criterion) {
                     p.advance(&model, DT, u, &tilt);
                 }
             },
-            BatchSize::LargeInput,
-        )
-    });
-    // All of them at once (`FallPath::advance_all`): the wind read and the usual steps four
-    // at a time in SIMD lanes, the same bits for each fall.
-    let mut outcomes = Vec::new();
-    group.bench_function("procedural_with_wind_lanes", |b| {
-        b.iter_batched_ref(
-            || fresh.clone(),
-            |paths| FallPath::advance_all(paths, &model, DT, Some(&wind), &tilt, &mut outcomes),
-            BatchSize::LargeInput,
-        )
-    });
-    group.bench_function("procedural_with_wind_warmed_lanes", |b| {
-        b.iter_batched_ref(
-            || warmed.clone(),
-            |paths| FallPath::advance_all(paths, &model, DT, Some(&wind), &tilt, &mut outcomes),
             BatchSize::LargeInput,
         )
     });

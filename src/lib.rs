@@ -271,8 +271,8 @@ pub mod prelude {
         Cloth, ClothAttachment, ClothGrid, ClothParams, ClothPlugin, ClothPreset, ClothState,
     };
     pub use crate::freefall::{
-        FallPlugin, FallPreset, FallSettings, FallState, FallingObject, Fluid, Landed, LeafCloud,
-        LeafCloudPlugin, PrimitiveMotion, Shape,
+        FallPlugin, FallPreset, FallSettings, FallState, FallStore, FallingObject, Fluid, Landed,
+        LeafCloud, LeafCloudPlugin, PrimitiveMotion, Shape,
     };
     pub use crate::lod::{LodFocus, LodView};
     pub use crate::spectrum::fbm;

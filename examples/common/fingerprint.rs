@@ -81,17 +81,16 @@ pub fn fingerprint(threads: Option<usize>) -> u64 {
     let mut hash = Fnv::default();
     let world = app.world_mut();
     let mut falls: Vec<(Entity, Vec3, Vec3, u8, bool)> = world
-        .query::<(Entity, &FallState)>()
-        .iter(world)
-        .filter_map(|(e, s)| {
-            let p = s.path()?;
-            Some((
+        .resource::<FallStore>()
+        .falls()
+        .map(|(e, p)| {
+            (
                 e,
                 p.position(),
                 p.drift(),
                 p.motion().index() as u8,
                 p.landed(),
-            ))
+            )
         })
         .collect();
     falls.sort_by_key(|f| f.0.index_u32());

@@ -47,7 +47,8 @@ pub fn report(r: &mut Report) {
         reference_speed: 4.0,
     };
     let start = Vec3::new(0.0, 1e6, 0.0); // never lands during the measurement
-    let mut path = FallPath::new(&model, leaf.scales(&regime), regime.main, 1, start, 0.0);
+    let mut path = FallPath::new(&model, leaf.scales(&regime), regime.main, 1, start, 0.0)
+        .expect("a release within bounds");
     let procedural = seconds_per(n, || {
         black_box(path.advance(&model, DT, breeze, &tilt));
     });

@@ -226,7 +226,8 @@ fn fall_rows(rows: &mut Vec<Vec<String>>) {
     ] {
         let regime = object.regime().expect("valid object");
         let start = Vec3::new(0.0, 1e5, 0.0);
-        let mut path = FallPath::new(&model, object.scales(&regime), regime.main, 3, start, 0.0);
+        let mut path = FallPath::new(&model, object.scales(&regime), regime.main, 3, start, 0.0)
+            .expect("a release within bounds");
         let u = Vec3::new(wind, 0.0, 0.0);
         let mut o = Outcome::new();
         let mut last = start;

@@ -142,9 +142,9 @@ fn setup(
 }
 
 /// Every fixed step's position, so the trace does not depend on the frame rate.
-fn record_trail(mut coins: Query<(&mut Coin, &FallState)>) {
-    for (mut coin, state) in &mut coins {
-        if let Some(path) = state.path()
+fn record_trail(mut coins: Query<(Entity, &mut Coin)>, store: Res<FallStore>) {
+    for (entity, mut coin) in &mut coins {
+        if let Some(path) = store.fall(entity)
             && !path.landed()
         {
             coin.trail.push_back(path.position());

@@ -284,9 +284,9 @@ fn rest_and_drop(
 }
 
 /// Every fixed step's position, so the trails do not depend on the frame rate.
-fn record_trails(mut exhibits: Query<(&mut Exhibit, &FallState)>) {
-    for (mut exhibit, state) in &mut exhibits {
-        let Some(path) = state.path() else {
+fn record_trails(mut exhibits: Query<(Entity, &mut Exhibit)>, store: Res<FallStore>) {
+    for (entity, mut exhibit) in &mut exhibits {
+        let Some(path) = store.fall(entity) else {
             continue;
         };
         if path.landed() {

@@ -15,6 +15,7 @@ use bevy::reflect::Reflect;
 use bevy::transform::TransformSystems;
 use bevy::transform::components::GlobalTransform;
 
+use super::fall_store::FallStore;
 use super::model::regime::PrimitiveMotion;
 use super::object::FallState;
 use super::object::FallingObject;
@@ -99,15 +100,19 @@ fn draw_fall_paths(
         (Entity, &FallState, &GlobalTransform, Option<&mut FallTrail>),
         With<FallingObject>,
     >,
+    store: Option<Res<FallStore>>,
     mut gizmos: Gizmos<FallGizmos>,
 ) {
+    let Some(store) = store else {
+        return;
+    };
     let config = gizmos.config_ext.clone();
     for (entity, state, transform, trail) in objects.iter_mut().take(config.max_objects) {
         let Some(mut trail) = trail else {
             commands.entity(entity).try_insert(FallTrail::default());
             continue;
         };
-        let Some(path) = state.path().filter(|p| !p.landed()) else {
+        let Some(path) = store.fall(entity).filter(|p| !p.landed()) else {
             trail.points.clear();
             continue;
         };

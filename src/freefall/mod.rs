@@ -29,6 +29,7 @@
 //! timestep, [`FallPreset`]s, the default looks, levels of detail ([`FallLod`]) and [`cloud`].
 
 pub mod cloud;
+mod fall_store;
 #[cfg(feature = "gizmos")]
 mod gizmos;
 mod lod;
@@ -37,8 +38,10 @@ mod model;
 mod object;
 mod plugin;
 mod presets;
+mod store;
 
 pub use cloud::{CloudRegion, LeafCloud, LeafCloudInvalid, LeafCloudPlugin, LeafCloudState};
+pub use fall_store::FallStore;
 #[cfg(feature = "gizmos")]
 pub use gizmos::FallGizmos;
 #[cfg(feature = "gizmos")]
@@ -53,10 +56,13 @@ pub use model::error::FallError;
 pub use model::markov::{MarkovChain, MarkovError};
 pub use model::motion::FallScales;
 pub use model::ode;
-pub use model::path::{FallPath, StepOutcome, WindTilt};
 pub use model::regime::{PrimitiveMotion, Regime};
 pub use model::release::FallRelease;
+pub use model::tilt::WindTilt;
 
 pub use object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
 pub use plugin::FallPlugin;
 pub use presets::FallPreset;
+pub use store::path::FallPath;
+pub use store::slot::StepOutcome;
+pub use store::view::FallView;

@@ -10,16 +10,18 @@ use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::Transform;
 
-use super::lod::TierClock;
+use super::fall_store::FallStore;
+use super::lod::FallLod;
 use super::model::FallModel;
 use super::model::body::{Fluid, Shape};
 use super::model::error::FallError;
 use super::model::markov::MarkovChain;
 use super::model::motion::FallScales;
-use super::model::path::FallPath;
 use super::model::regime::{PrimitiveMotion, Regime};
 use super::model::release::FallRelease;
 use super::presets::FallPreset;
+use super::store::path::FallPath;
+use super::store::slot::FallStart;
 use crate::error::InvalidValue;
 use crate::lifecycle::Described;
 
@@ -156,24 +158,44 @@ impl FallingObject {
     /// # Errors
     /// What [`Self::regime`] or [`FallRelease::validate`] reject.
     pub fn path(&self, model: &FallModel, release: FallRelease) -> Result<FallPath, FallError> {
+        let start = self.start(model, release, None)?;
+        Ok(FallPath::release(
+            model,
+            start.scales,
+            start.chain,
+            start.seed,
+            start.release,
+        ))
+    }
+
+    /// What lets its fall go as `release` says, with levels of detail `lod`.
+    pub(crate) fn start(
+        &self,
+        model: &FallModel,
+        release: FallRelease,
+        lod: Option<crate::lod::LodTiers>,
+    ) -> Result<FallStart, FallError> {
         let regime = self.regime()?;
         release.validate()?;
         let chain = match &self.markov {
             Some(chain) => Arc::new(chain.bounded(regime.main)),
             None => model.bounded_shared(regime.main),
         };
-        Ok(FallPath::release(
-            model,
-            self.scales(&regime),
+        Ok(FallStart {
+            scales: self.scales(&regime),
             chain,
-            self.seed,
+            seed: self.seed,
             release,
-        ))
+            max_angle: self.wind_tilt,
+            lod,
+        })
     }
 }
 
-/// Runtime state of a [`FallingObject`] (required component). Reflected (Re, I*, U, the main
-/// motion) for inspectors; the path itself is not.
+/// Runtime state of a [`FallingObject`] (required component): its regime (Re, I*, U, the main
+/// motion), what it is doing, and which fall of the app's [`FallStore`] is its own (read the
+/// fall itself there, with [`FallStore::fall`]). Changed when it is let go, when its motion
+/// changes and when it lands or is lifted, not on every step.
 ///
 /// # Example
 ///
@@ -196,11 +218,11 @@ impl FallingObject {
 pub struct FallState {
     regime: Option<Regime>,
     #[reflect(ignore)]
-    pub(super) path: Option<FallPath>,
-    /// When the fall was last stepped, for an object with [`FallLod`] (or one easing back to
-    /// full detail after it was removed).
+    motion: Option<PrimitiveMotion>,
+    landed: bool,
+    /// Its fall in the app's store.
     #[reflect(ignore)]
-    pub(super) tier: Option<TierClock>,
+    pub(super) handle: Option<u32>,
 }
 
 impl FallState {
@@ -209,19 +231,25 @@ impl FallState {
         self.regime.as_ref()
     }
 
-    /// The fall (Markov state, control points, orientation).
-    pub fn path(&self) -> Option<&FallPath> {
-        self.path.as_ref()
-    }
-
-    /// The current primitive motion.
+    /// The current primitive motion (Markov state), once it falls.
     pub fn motion(&self) -> Option<PrimitiveMotion> {
-        self.path.as_ref().map(FallPath::motion)
+        self.motion
     }
 
-    /// True once on the ground.
+    /// True once on the ground (until a strong enough wind lifts it).
     pub fn landed(&self) -> bool {
-        self.path.as_ref().is_some_and(FallPath::landed)
+        self.landed
+    }
+
+    /// Whether it has a fall (a valid description, set up).
+    pub fn falls(&self) -> bool {
+        self.handle.is_some()
+    }
+
+    /// Takes in what its fall is doing now.
+    pub(super) fn mirror(&mut self, motion: PrimitiveMotion, landed: bool) {
+        self.motion = Some(motion);
+        self.landed = landed;
     }
 }
 
@@ -334,10 +362,15 @@ impl From<FallPreset> for FallingObject {
 impl Described for FallingObject {
     type Invalid = FallingObjectInvalid;
     type Key = FallingObject;
-    type Data = (&'static Transform, &'static mut FallState);
+    type Data = (
+        &'static Transform,
+        &'static mut FallState,
+        Option<&'static FallLod>,
+    );
     type Context = (
         Option<Res<'static, FallSettings>>,
         Option<Res<'static, FallModel>>,
+        Option<ResMut<'static, FallStore>>,
     );
     const SUBJECT: &'static str = "FallingObject";
     const CONSEQUENCE: &'static str = "it does not fall";
@@ -350,39 +383,53 @@ impl Described for FallingObject {
         }
     }
 
-    /// Lets the object go from its transform; a fall released again in mid-air keeps the
-    /// velocity the fluid gave it. Without a model (removed by the user) nothing is released.
+    /// Lets the object go from its transform, in its own slot of the app's [`FallStore`]; a
+    /// fall released again in mid-air keeps the velocity the fluid gave it. Without a model or
+    /// a store (removed by the user) nothing is released.
     fn set_up(
         &self,
-        _: Entity,
-        (transform, mut state): (&Transform, Mut<FallState>),
-        (settings, model): &mut (Option<Res<FallSettings>>, Option<Res<FallModel>>),
+        entity: Entity,
+        (transform, mut state, lod): (&Transform, Mut<FallState>, Option<&FallLod>),
+        (settings, model, store): &mut (
+            Option<Res<FallSettings>>,
+            Option<Res<FallModel>>,
+            Option<ResMut<FallStore>>,
+        ),
         _: &mut Commands,
     ) -> Option<Result<(), FallError>> {
         let model = model.as_deref()?;
-        let velocity = state
-            .path
-            .as_ref()
-            .filter(|p| !p.landed())
-            .map_or(Vec3::ZERO, FallPath::drift);
+        let store = store.as_deref_mut()?;
+        let velocity = store
+            .fall(entity)
+            .filter(|f| !f.landed())
+            .map_or(Vec3::ZERO, |f| f.drift());
         let release = FallRelease {
             position: transform.translation,
             rotation: Some(transform.rotation),
             velocity,
             ground: settings.as_ref().map_or(0.0, |s| s.ground_height),
         };
+        let lod = lod.map(|l| l.0).filter(|l| l.check().is_ok());
         let fall = self
             .regime()
-            .and_then(|regime| Ok((regime, self.path(model, release)?)));
-        let (regime, path, outcome) = match fall {
-            Ok((regime, path)) => (Some(regime), Some(path), Ok(())),
-            Err(error) => (None, None, Err(error)),
-        };
-        *state = FallState {
-            regime,
-            path,
-            tier: None,
-        };
-        Some(outcome)
+            .and_then(|regime| Ok((regime, self.start(model, release, lod)?)));
+        Some(match fall {
+            Ok((regime, start)) => {
+                let handle = store.set_up(entity, model, &start);
+                let motion = store.fall(entity).map(|f| f.motion());
+                *state = FallState {
+                    regime: Some(regime),
+                    motion,
+                    landed: false,
+                    handle: Some(handle),
+                };
+                Ok(())
+            }
+            Err(error) => {
+                store.remove(entity);
+                *state = FallState::default();
+                Err(error)
+            }
+        })
     }
 }

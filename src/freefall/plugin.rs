@@ -1,19 +1,18 @@
-//! The [`FallPlugin`]: steps every [`FallingObject`] on the fixed timestep and poses it once
-//! per frame.
+//! The [`FallPlugin`]: steps every [`FallingObject`] on the fixed timestep (the app's
+//! [`FallStore`], one driver for all of them) and poses it once per frame.
 
 use bevy::app::{App, Plugin, PostUpdate};
 use bevy::ecs::prelude::*;
-use bevy::math::{Quat, Vec3};
-use bevy::tasks::{ComputeTaskPool, ParallelSliceMut};
+use bevy::tasks::ComputeTaskPool;
 use bevy::time::{Fixed, Time};
 use bevy::transform::components::Transform;
 
-use super::lod::{FallClock, FallLod, TierClock};
+use super::fall_store::FallStore;
+use super::lod::FallLod;
 use super::model::FallModel;
-use super::model::path::usual::{UsualJob, run_usual};
-use super::model::path::{FallPath, StepOutcome, WindTilt};
-use super::model::piece::Piece;
+use super::model::tilt::WindTilt;
 use super::object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
+use super::store::driver::{Air, Step};
 use crate::lod::LodFocus;
 use crate::schedule::WindfallSystems;
 use crate::wind::WindField;
@@ -42,8 +41,9 @@ impl Plugin for FallPlugin {
             .register_type::<FallModel>()
             .register_type::<super::presets::FallPreset>()
             .init_resource::<FallSettings>()
-            .init_resource::<FallClock>()
+            .init_resource::<FallStore>()
             .add_message::<Landed>()
+            .add_observer(forget_fall)
             // Every system runs only when there is something for it: a system the executor hands
             // to a worker costs a thread wake-up even when it has nothing to do.
             .add_systems(
@@ -61,6 +61,7 @@ impl Plugin for FallPlugin {
                         crate::lifecycle::set_up_pending::<FallingObject>
                             .run_if(resource_added::<FallModel>),
                         crate::lifecycle::set_up_changed::<FallingObject>,
+                        take_lod,
                         pose_objects,
                     )
                         .chain()
@@ -72,30 +73,17 @@ impl Plugin for FallPlugin {
     }
 }
 
-/// What stepping a falling object reads and writes.
-type Fall<'a> = (
-    Entity,
-    &'a FallingObject,
-    Mut<'a, FallState>,
-    Option<&'a FallLod>,
-);
-
-/// Objects a parallel task steps together.
-const OBJECT_CHUNK: usize = 256;
-
-/// Steps every fall; objects are independent, so chunks of them run in parallel (with Bevy's
-/// `multi_threaded` feature), the usual steps of each chunk four at a time in SIMD lanes, and
-/// the landings are written sorted by entity, so neither the messages nor any bit depends on the
-/// thread schedule. An object with [`FallLod`] is stepped when its tier is due (see
-/// [`crate::lod`]), over the time since its last step.
+/// Steps every fall of the app's [`FallStore`] (the bands due, in parallel chunks with Bevy's
+/// `multi_threaded` feature; the same bits on any number of threads), then tells each object
+/// whose motion changed or that landed or was lifted, and sends the landings sorted by entity.
 #[allow(clippy::too_many_arguments)]
 fn step_objects(
-    mut objects: Query<(Entity, &FallingObject, &mut FallState, Option<&FallLod>)>,
+    mut store: ResMut<FallStore>,
+    mut states: Query<&mut FallState>,
     foci: crate::lod::Foci,
     wind: Option<Res<WindField>>,
     model: Option<Res<FallModel>>,
     time: Res<Time>,
-    mut clock: ResMut<FallClock>,
     mut landed: MessageWriter<Landed>,
     mut warned: Local<bool>,
 ) {
@@ -107,150 +95,89 @@ fn step_objects(
         return;
     };
     *warned = false;
-    let dt = time.delta_secs();
-    clock.tick(dt);
-    let step = ObjectStep {
+    let wind = wind.as_deref();
+    let step = Step {
         model: &model,
-        wind: wind.as_deref(),
+        air: wind.map_or(Air::Still, Air::Field),
+        reference_speed: WindTilt::in_wind(0.0, wind).reference_speed,
         focus: crate::lod::focus(&foci),
-        clock: *clock,
-        dt,
         lanes: crate::math::lanes_enabled(),
+        recycle_after: None,
     };
-    let mut falls: Vec<Fall> = objects.iter_mut().collect();
-    let mut landings: Vec<Landed> = match ComputeTaskPool::try_get() {
-        Some(pool) if falls.len() > OBJECT_CHUNK => falls
-            .par_chunk_map_mut(pool, OBJECT_CHUNK, |_, chunk| step_chunk(chunk, &step))
-            .into_iter()
-            .flatten()
-            .collect(),
-        _ => falls
-            .chunks_mut(OBJECT_CHUNK)
-            .flat_map(|chunk| step_chunk(chunk, &step))
-            .collect(),
-    };
+    let pool = ComputeTaskPool::try_get().map(|p| &**p);
+    let store = &mut *store;
+    let report = store.store.step(time.delta_secs(), &step, pool);
+    let mut landings: Vec<Landed> = report
+        .landed
+        .iter()
+        .filter_map(|&h| {
+            let fall = store.store.view(h)?;
+            Some(Landed {
+                entity: store.entity(h)?,
+                position: fall.position(),
+                flight_time: fall.time(),
+            })
+        })
+        .collect();
     landings.sort_by_key(|l| l.entity);
+    for &handle in report.changed.iter().chain(&report.landed) {
+        let (Some(entity), Some(fall)) = (store.entity(handle), store.store.view(handle)) else {
+            continue;
+        };
+        if let Ok(mut state) = states.get_mut(entity) {
+            state.mirror(fall.motion(), fall.landed());
+        }
+    }
     landed.write_batch(landings);
 }
 
-/// What the chunks of one step share.
-struct ObjectStep<'a> {
-    model: &'a FallModel,
-    wind: Option<&'a WindField>,
-    focus: Option<crate::lod::Focus>,
-    clock: FallClock,
-    dt: f32,
-    lanes: bool,
-}
-
-/// Steps a chunk of objects: the usual steps in lanes, the rest one at a time; returns the
-/// landings.
-fn step_chunk(chunk: &mut [Fall], step: &ObjectStep) -> Vec<Landed> {
-    let (clock, dt) = (step.clock, step.dt);
-    let mut landings = Vec::new();
-    // The objects due this step, and where they are.
-    let (mut due, mut positions) = (Vec::new(), Vec::new());
-    for (i, (entity, _, state, lod)) in chunk.iter_mut().enumerate() {
-        let state = &mut **state;
-        let Some(path) = state.path.as_ref() else {
-            continue;
-        };
-        // Its first step with levels of detail is taken at once (a fall just let go does
-        // not wait for its turn), as if it had been stepped on the step before.
-        let first = state.tier.is_none() && lod.is_some();
-        if first {
-            state.tier = Some(TierClock::stepped_at(clock.seconds - f64::from(dt), dt));
-        }
-        let tier = lod
-            .zip(step.focus)
-            .map_or(1, |(l, f)| f.tier(&l.0, path.position()));
-        if first || clock.due(tier, entity.index_u32()) {
-            due.push((i, tier));
-            positions.push(path.position());
-        }
+/// A [`FallingObject`] removed (or its entity despawned) takes its fall with it.
+fn forget_fall(
+    event: On<Remove, FallingObject>,
+    store: Option<ResMut<FallStore>>,
+    mut states: Query<&mut FallState>,
+) {
+    if let Some(mut store) = store {
+        store.remove(event.entity);
     }
-    // Resting objects feel the wind too: a strong enough one lifts them again. Four points
-    // at a time.
-    let mut winds = Vec::new();
-    match step.wind {
-        Some(w) => w.velocities(&positions, &mut winds),
-        None => winds.resize(positions.len(), Vec3::ZERO),
-    }
-    let (mut swings, mut curves) = (Vec::new(), Vec::new());
-    for (&(i, tier), velocity) in due.iter().zip(winds) {
-        let (entity, object, state, lod) = &mut chunk[i];
-        let state = &mut **state;
-        let Some(path) = state.path.as_mut() else {
-            continue;
-        };
-        let tilt = WindTilt::in_wind(object.wind_tilt, step.wind);
-        let job = UsualJob::new(i, velocity, dt, tilt);
-        if step.lanes && state.tier.is_none() && path.usual(job.dt) {
-            match path.piece() {
-                Piece::Swing { .. } => swings.push(job),
-                Piece::Curve { .. } => curves.push(job),
-            }
-            continue;
-        }
-        let outcome = match state.tier.as_mut() {
-            Some(t) => {
-                let next = clock.steps_to_next(tier, entity.index_u32()) as f32 * dt;
-                let (outcome, _) =
-                    t.advance(path, step.model, clock.seconds, next, velocity, &tilt);
-                // Back at full detail for good (the component was removed) once eased.
-                if lod.is_none() && !t.easing(clock.seconds) {
-                    state.tier = None;
-                }
-                outcome
-            }
-            None => path.advance(step.model, dt, velocity, &tilt),
-        };
-        if outcome == StepOutcome::Landed {
-            landings.push(landing(*entity, path));
-        }
-    }
-    let db = step.model.database();
-    for jobs in [&swings, &curves] {
-        run_usual(chunk, jobs, path_of, db, |fall, _, landed| {
-            if landed && let Some(path) = fall.2.path.as_ref() {
-                landings.push(landing(fall.0, path));
-            }
-        });
-    }
-    landings
-}
-
-/// The fall of an object whose usual step is being taken (it has one).
-fn path_of<'a>(fall: &'a mut Fall<'_>) -> &'a mut FallPath {
-    fall.2.path.as_mut().expect("a usual step has a path")
-}
-
-/// The message of `entity`'s fall reaching the ground.
-fn landing(entity: Entity, path: &FallPath) -> Landed {
-    Landed {
-        entity,
-        position: path.position(),
-        flight_time: path.time(),
+    if let Ok(mut state) = states.get_mut(event.entity) {
+        *state = FallState::default();
     }
 }
 
+/// Takes in each object's levels of detail when its [`FallLod`] is added, changed or removed.
+fn take_lod(
+    mut store: ResMut<FallStore>,
+    changed: Query<(Entity, &FallLod), Changed<FallLod>>,
+    mut removed: RemovedComponents<FallLod>,
+) {
+    for (entity, lod) in &changed {
+        store.set_lod(entity, Some(lod.0).filter(|l| l.check().is_ok()));
+    }
+    for entity in removed.read() {
+        store.set_lod(entity, None);
+    }
+}
+
+/// Poses every object: its fall's shown pose at the frame's share of the fixed step (in lanes,
+/// in the store), written to its transform.
 fn pose_objects(
+    mut store: ResMut<FallStore>,
     mut objects: Query<(&FallState, &mut Transform)>,
     schedule: Option<Res<crate::schedule::WindfallSchedule>>,
     time: Option<Res<Time<Fixed>>>,
-    clock: Option<Res<FallClock>>,
 ) {
     let s = crate::schedule::overstep(schedule.as_deref(), time.as_deref());
-    let clock = clock.as_deref().copied().unwrap_or_default();
+    let store = &mut *store;
+    let clock = store.store.clock;
     let now = clock.seconds + f64::from(s * clock.last_dt);
+    let pool = ComputeTaskPool::try_get().map(|p| &**p);
+    store.store.poses(now, pool, &mut store.poses);
+    let poses = &store.poses;
     objects.par_iter_mut().for_each(|(state, mut transform)| {
-        if let Some(path) = state.path() {
-            let (position, rotation): (Vec3, Quat) = match &state.tier {
-                Some(tier) => tier.shown(path, now),
-                None => path.smoothed(s),
-            };
-            transform.translation = position;
-            transform.rotation = rotation;
+        if let Some(pose) = state.handle.and_then(|h| poses.get(h as usize)) {
+            transform.translation = pose.position;
+            transform.rotation = pose.rotation;
         }
     });
 }

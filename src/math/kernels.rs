@@ -72,6 +72,15 @@ fn sin_cos_near<L: Lane>(x: L) -> (L, L) {
     if !L::any(x.abs().gt(L::splat(0.75))) {
         return sin_cos_poly(x);
     }
+    sin_cos_bounded(x)
+}
+
+/// sin x and cos x for |x| ≤ 10⁴ without a branch (the bits of [`sin_cos`]): what the lanes
+/// call where the argument is bounded by construction (half angles, a curve's phase reduced
+/// to one turn). Beyond 10⁴ it is not accurate: callers bound their arguments. NaN and
+/// infinities give NaN.
+#[inline]
+pub(crate) fn sin_cos_bounded<L: Lane>(x: L) -> (L, L) {
     let k = round(x * L::splat(2.0 / PI));
     let r = (((x - k * L::splat(PIO2_1)) - k * L::splat(PIO2_2)) - k * L::splat(PIO2_3))
         - k * L::splat(PIO2_4);

@@ -6,7 +6,7 @@
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-use wide::{f32x4, u32x4};
+use wide::{f32x4, i32x4, u32x4};
 
 /// A number or a few in lanes, with the operations the step needs.
 pub(crate) trait Lane:
@@ -38,6 +38,8 @@ pub(crate) trait Lane:
     fn or(a: Self::Mask, b: Self::Mask) -> Self::Mask;
     /// Whether any lane is set.
     fn any(mask: Self::Mask) -> bool;
+    /// Whether every lane is set.
+    fn all(mask: Self::Mask) -> bool;
     /// |self|.
     fn abs(self) -> Self;
     /// √self, correctly rounded (IEEE).
@@ -51,6 +53,16 @@ pub(crate) trait Lane:
     fn from_fn(f: impl FnMut(usize) -> f32) -> Self;
     /// Whether lane `k` of `mask` is set.
     fn mask_get(mask: Self::Mask, k: usize) -> bool;
+    /// The [`Lane::WIDTH`] numbers of `column` from `k` on.
+    fn load(column: &[f32], k: usize) -> Self;
+    /// Writes the lanes where `mask` is set into `column` from `k` on, keeping the others.
+    fn store_where(self, mask: Self::Mask, column: &mut [f32], k: usize);
+    /// Not `mask`.
+    fn not(mask: Self::Mask) -> Self::Mask;
+    /// A mask with lane `k` set where `f(k)`.
+    fn mask_from_fn(f: impl FnMut(usize) -> bool) -> Self::Mask;
+    /// Four columns from one row of four numbers a lane (`row(k)` for lane `k`): a transpose.
+    fn columns(row: impl FnMut(usize) -> [f32; 4]) -> [Self; 4];
 
     /// `self > other`.
     fn gt(self, other: Self) -> Self::Mask {
@@ -100,6 +112,10 @@ impl Lane for f32 {
         mask
     }
     #[inline]
+    fn all(mask: bool) -> bool {
+        mask
+    }
+    #[inline]
     fn abs(self) -> Self {
         f32::abs(self)
     }
@@ -127,6 +143,28 @@ impl Lane for f32 {
     #[inline]
     fn mask_get(mask: bool, _: usize) -> bool {
         mask
+    }
+    #[inline]
+    fn load(column: &[f32], k: usize) -> Self {
+        column[k]
+    }
+    #[inline]
+    fn store_where(self, mask: bool, column: &mut [f32], k: usize) {
+        if mask {
+            column[k] = self;
+        }
+    }
+    #[inline]
+    fn not(mask: bool) -> bool {
+        !mask
+    }
+    #[inline]
+    fn mask_from_fn(mut f: impl FnMut(usize) -> bool) -> bool {
+        f(0)
+    }
+    #[inline]
+    fn columns(mut row: impl FnMut(usize) -> [f32; 4]) -> [Self; 4] {
+        row(0)
     }
 }
 
@@ -167,6 +205,10 @@ impl Lane for f32x4 {
         mask.any()
     }
     #[inline]
+    fn all(mask: f32x4) -> bool {
+        mask.all()
+    }
+    #[inline]
     fn abs(self) -> Self {
         f32x4::abs(self)
     }
@@ -179,8 +221,8 @@ impl Lane for f32x4 {
         let sub = self.simd_lt(f32x4::splat(f32::MIN_POSITIVE));
         let x = sub.select(self * f32x4::splat(33_554_432.0), self);
         let bits: u32x4 = bytemuck::cast(x);
-        let exponent: [u32; 4] = ((bits >> 23u32) & u32x4::splat(0xff)).to_array();
-        let e = f32x4::from(exponent.map(|b| b as f32)) - f32x4::splat(126.0);
+        let exponent: i32x4 = bytemuck::cast((bits >> 23u32) & u32x4::splat(0xff));
+        let e = exponent.round_float() - f32x4::splat(126.0);
         let e = e - sub.select(f32x4::splat(25.0), f32x4::splat(0.0));
         let m = (bits & u32x4::splat(0x007f_ffff)) | u32x4::splat(0x3f00_0000);
         (bytemuck::cast(m), e)
@@ -196,5 +238,28 @@ impl Lane for f32x4 {
     #[inline]
     fn mask_get(mask: f32x4, k: usize) -> bool {
         mask.to_bitmask() & (1 << k) != 0
+    }
+    #[inline]
+    fn load(column: &[f32], k: usize) -> Self {
+        let four: [f32; 4] = column[k..k + 4].try_into().expect("four lanes");
+        f32x4::from(four)
+    }
+    #[inline]
+    fn store_where(self, mask: f32x4, column: &mut [f32], k: usize) {
+        let old = Self::load(column, k);
+        column[k..k + 4].copy_from_slice(&mask.select(self, old).to_array());
+    }
+    #[inline]
+    fn not(mask: f32x4) -> f32x4 {
+        mask ^ bytemuck::cast::<[u32; 4], f32x4>([u32::MAX; 4])
+    }
+    #[inline]
+    fn mask_from_fn(mut f: impl FnMut(usize) -> bool) -> f32x4 {
+        let bits: [u32; 4] = std::array::from_fn(|k| if f(k) { u32::MAX } else { 0 });
+        bytemuck::cast(bits)
+    }
+    #[inline]
+    fn columns(mut row: impl FnMut(usize) -> [f32; 4]) -> [Self; 4] {
+        f32x4::transpose([row(0), row(1), row(2), row(3)].map(f32x4::from))
     }
 }

@@ -150,9 +150,8 @@ fn a_falling_object_made_and_edited_through_reflection_falls() {
     // An inspector's edit through `ReflectComponent` releases it again from where it is.
     let before = app
         .world()
-        .get::<FallState>(entity)
-        .unwrap()
-        .path()
+        .resource::<FallStore>()
+        .fall(entity)
         .unwrap()
         .time();
     {
@@ -171,9 +170,8 @@ fn a_falling_object_made_and_edited_through_reflection_falls() {
     app.update();
     let after = app
         .world()
-        .get::<FallState>(entity)
-        .unwrap()
-        .path()
+        .resource::<FallStore>()
+        .fall(entity)
         .unwrap()
         .time();
     assert!(
@@ -463,8 +461,11 @@ fn a_removed_and_reinserted_object_falls_again() {
         .entity_mut(leaf)
         .insert((sheet, Transform::from_xyz(3.0, 5.0, 0.0)));
     app.update();
-    let state = app.world().get::<FallState>(leaf).expect("a state");
-    let path = state.path().expect("a fall");
+    let path = app
+        .world()
+        .resource::<FallStore>()
+        .fall(leaf)
+        .expect("a fall");
     assert!(
         path.position().distance(Vec3::new(3.0, 5.0, 0.0)) < 0.5,
         "{}",

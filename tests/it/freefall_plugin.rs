@@ -47,7 +47,12 @@ fn objects_land_once_and_stay() {
     assert_eq!(landed.len(), 1, "{landed:?}");
     let state = app.world().get::<FallState>(entities[0]).unwrap();
     assert!(state.landed());
-    assert_eq!(state.path().unwrap().position().y, 1.5);
+    let fall = app
+        .world()
+        .resource::<FallStore>()
+        .fall(entities[0])
+        .unwrap();
+    assert_eq!(fall.position().y, 1.5);
     // 0.5 m at U ≈ 0.1585 m/s: about 3.2 s.
     assert!(
         (landed[0].flight_time - 0.5 / 0.1585).abs() < 0.35,
@@ -72,9 +77,8 @@ fn uniform_wind_carries_objects_after_their_response_time() {
     }
     let path = app
         .world()
-        .get::<FallState>(entities[0])
-        .unwrap()
-        .path()
+        .resource::<FallStore>()
+        .fall(entities[0])
         .unwrap();
     let drift = path.position() - Vec3::new(0.0, 2.0, 0.0) - path.still_displacement();
     // Mean wind along +X at the object's height (it falls slowly through the log profile).
@@ -105,9 +109,8 @@ fn without_wind_objects_fall_in_still_fluid() {
     }
     let path = app
         .world()
-        .get::<FallState>(entities[0])
-        .unwrap()
-        .path()
+        .resource::<FallStore>()
+        .fall(entities[0])
         .unwrap();
     let diff = path.position() - (Vec3::new(0.0, 2.0, 0.0) + path.still_displacement());
     assert!(diff.length() < 1e-5, "{diff:?}");
@@ -160,7 +163,13 @@ fn invalid_objects_report_their_error_and_stay_put() {
         .get::<FallingObjectInvalid>(entities[0])
         .unwrap();
     assert_eq!(invalid.0.field(), "density");
-    assert!(state.path().is_none());
+    assert!(!state.falls());
+    assert!(
+        app.world()
+            .resource::<FallStore>()
+            .fall(entities[0])
+            .is_none()
+    );
     assert_eq!(
         app.world()
             .get::<Transform>(entities[0])
@@ -205,9 +214,8 @@ fn changing_the_component_releases_again_from_the_transform() {
     app.update();
     let path = app
         .world()
-        .get::<FallState>(entities[0])
-        .unwrap()
-        .path()
+        .resource::<FallStore>()
+        .fall(entities[0])
         .unwrap();
     assert!(!path.landed());
     assert!(

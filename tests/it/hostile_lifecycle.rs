@@ -236,13 +236,13 @@ fn falls_spawned_without_a_model_start_when_it_returns() {
     for _ in 0..10 {
         app.update();
     }
-    assert!(app.world().get::<FallState>(fall).unwrap().path().is_none());
+    assert!(app.world().resource::<FallStore>().fall(fall).is_none());
     app.world_mut().insert_resource(FallModel::default());
     for _ in 0..30 {
         app.update();
     }
     let world = app.world();
-    let path = world.get::<FallState>(fall).unwrap().path();
+    let path = world.resource::<FallStore>().fall(fall);
     assert!(path.is_some_and(|p| p.position().y < 5.0), "the leaf fell");
     let state = world.get::<LeafCloudState>(leaves).unwrap();
     assert!(
@@ -338,7 +338,7 @@ fn in_any_schedule_the_pose_shows_the_step_just_taken() {
             app.update();
             let world = app.world();
             let shown = world.get::<Transform>(leaf).unwrap().translation;
-            let path = world.get::<FallState>(leaf).unwrap().path().unwrap();
+            let path = world.resource::<FallStore>().fall(leaf).unwrap();
             let latest = path.position();
             assert!(
                 shown.distance(latest) < 1e-4,

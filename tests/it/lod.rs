@@ -46,8 +46,8 @@ fn leaves_app(lod: bool, camera: Vec3, wind: Option<WindConfig>) -> (App, Vec<En
     (app, leaves, camera)
 }
 
-fn path_of(app: &App, e: Entity) -> &FallPath {
-    app.world().get::<FallState>(e).unwrap().path().unwrap()
+fn path_of(app: &App, e: Entity) -> FallView<'_> {
+    app.world().resource::<FallStore>().fall(e).unwrap()
 }
 
 fn shown(app: &App, leaves: &[Entity]) -> Vec<Transform> {

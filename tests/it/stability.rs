@@ -146,7 +146,8 @@ proptest! {
         prop_assert!(regime.reynolds > 0.0 && regime.inertia > 0.0 && regime.descent_speed > 0.0);
         let model = FallModel::default();
         let start = Vec3::new(0.0, 10.0, 0.0);
-        let mut path = FallPath::new(&model, object.scales(&regime), regime.main, seed, start, 0.0);
+        let mut path = FallPath::new(&model, object.scales(&regime), regime.main, seed, start, 0.0)
+    .expect("a release within bounds");
         let tilt = WindTilt { max_angle: 0.6, reference_speed: 4.0 };
         let u = wind_vector(wind.0, wind.1, wind.2);
         for step in 1..=100 {

@@ -206,6 +206,7 @@ impl LeafCloud {
             self.region,
             ground,
             self.lod,
+            self.object.wind_tilt,
             self.recycle_after,
         ))
     }

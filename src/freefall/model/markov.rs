@@ -203,11 +203,21 @@ impl MarkovChain {
         for (i, row) in self.transitions.iter().enumerate().take(k + 1) {
             rows[i] = collapse(row);
         }
+        let leave_rate = std::array::from_fn(|i| {
+            let stay = rows[i][i].clamp(0.0, 1.0);
+            if stay >= 1.0 {
+                0.0
+            } else if stay <= 0.0 {
+                f32::INFINITY
+            } else {
+                -libm::logf(stay) / self.step
+            }
+        });
         BoundedChain {
             main,
             initial: collapse(&self.initial),
             rows,
-            step: self.step,
+            leave_rate,
         }
     }
 }
@@ -225,7 +235,8 @@ pub(crate) struct BoundedChain {
     main: PrimitiveMotion,
     initial: [f32; 6],
     rows: [[f32; 6]; 6],
-    step: f32,
+    /// −ln p_ii / step for each row: the rate at which a fall leaves the motion, 1/s.
+    leave_rate: [f32; 6],
 }
 
 impl BoundedChain {
@@ -246,28 +257,28 @@ impl BoundedChain {
         draw(&self.rows[current.index()], rng.uniform()).max(current)
     }
 
-    /// Draws the motion after a piece of `seconds` in `current`: it leaves with probability
-    /// 1 − p_ii^(seconds / step), to the others in proportion to their p_ij.
-    pub fn next_after(
-        &self,
-        current: PrimitiveMotion,
-        seconds: f32,
-        rng: &mut FallRng,
-    ) -> PrimitiveMotion {
+    /// How long a fall that has just entered `current` stays in it, s: exponential with the
+    /// rate at which the chain leaves it, −ln p_ii per step (infinite for a motion it never
+    /// leaves). Drawn once on entering, so a piece's end only counts it down: staying through a
+    /// piece of d seconds then has probability p_ii^(d / step), as the matrix says.
+    pub fn sojourn(&self, current: PrimitiveMotion, rng: &mut FallRng) -> f32 {
+        let rate = self.leave_rate[current.min(self.main).index()];
+        if rate > 0.0 {
+            // 1 − u in (0, 1]: a finite time.
+            -libm::logf(1.0 - rng.uniform()) / rate
+        } else {
+            f32::INFINITY
+        }
+    }
+
+    /// The motion a fall goes to when its sojourn in `current` is over: another one, in
+    /// proportion to its p_ij (never lower, never above `main`).
+    pub fn leave(&self, current: PrimitiveMotion, rng: &mut FallRng) -> PrimitiveMotion {
         let current = current.min(self.main);
         let row = &self.rows[current.index()];
-        // Nothing below the diagonal: the cumulative row at i is p_ii (−1 marks a zero).
+        // Nothing below the diagonal: the cumulative row at i is p_ii.
         let stay = row[current.index()].clamp(0.0, 1.0);
         if stay >= 1.0 {
-            return current;
-        }
-        let steps = if seconds.is_finite() {
-            (seconds / self.step).max(0.0)
-        } else {
-            1.0
-        };
-        let u = rng.uniform();
-        if u < libm::powf(stay, steps) {
             return current;
         }
         // Among the others, in proportion to p_ij: a uniform draw over the leaving share.
@@ -379,20 +390,19 @@ mod tests {
     }
 
     #[test]
-    fn a_piece_leaves_its_motion_at_the_rate_of_its_duration() {
-        // p_ii = 0.8 per 0.25 s step: a 0.1 s piece stays with 0.8^0.4, a 1 s piece with 0.8^4.
+    fn a_fall_stays_in_a_motion_through_a_piece_as_the_matrix_says() {
+        // p_ii = 0.8 per 0.25 s step: a fall stays through 0.1 s with 0.8^0.4, through 1 s
+        // with 0.8^4, whatever pieces it is cut into (the sojourn is drawn on entering).
         let chain = MarkovChain::default();
         let bounded = chain.bounded(PrimitiveMotion::Spiral);
         let p = f64::from(chain.transitions()[4][4]);
         let mut rng = FallRng::new(17);
+        let n = 40_000;
+        let sojourns: Vec<f32> = (0..n)
+            .map(|_| bounded.sojourn(PrimitiveMotion::Helix, &mut rng))
+            .collect();
         for seconds in [0.1f32, 0.25, 1.0] {
-            let n = 40_000;
-            let stayed = (0..n)
-                .filter(|_| {
-                    bounded.next_after(PrimitiveMotion::Helix, seconds, &mut rng)
-                        == PrimitiveMotion::Helix
-                })
-                .count();
+            let stayed = sojourns.iter().filter(|&&s| s > seconds).count();
             let expected = p.powf(f64::from(seconds) / f64::from(MarkovChain::STEP_SECONDS));
             let f = stayed as f64 / f64::from(n);
             let sigma = (expected * (1.0 - expected) / f64::from(n)).sqrt();
@@ -400,6 +410,15 @@ mod tests {
                 (f - expected).abs() < 5.0 * sigma,
                 "{seconds} s: {f} vs {expected}"
             );
+        }
+        // The absorbing motion is never left; leaving goes up the chain only.
+        assert_eq!(
+            bounded.sojourn(PrimitiveMotion::Spiral, &mut rng),
+            f32::INFINITY
+        );
+        for _ in 0..1000 {
+            let next = bounded.leave(PrimitiveMotion::Tumbling, &mut rng);
+            assert!(next > PrimitiveMotion::Tumbling, "{next:?}");
         }
     }
 }

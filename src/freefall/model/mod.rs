@@ -2,9 +2,9 @@
 //! its regime and main motion (§2.1, [`regime`]), the plate's equations of motion (eq. 4,
 //! [`ode`]), the trajectory database of eq. 5 swings (§2.2, [`database`]), the swing search and
 //! amplitudes (§2.3, [`motion`]), a piece of motion (eq. 5–6, [`piece`]), the Markov chain
-//! (§3, [`markov`]), a fall synthesised from them in the wind (§4, [`path`], with the wind's tilt
-//! of eq. 15 in [`tilt`]), where it starts ([`release`]), and [`FallModel`], what every fall
-//! shares: the database and the chain.
+//! (§3, [`markov`]), the wind's tilt of eq. 15 ([`tilt`]), where a fall starts ([`release`]),
+//! and [`FallModel`], what every fall shares: the database and the chain. A fall synthesised
+//! from them in the wind (§4) is a slot of a fall store (`freefall::store`).
 
 pub(crate) mod body;
 pub(crate) mod database;
@@ -12,7 +12,6 @@ pub(crate) mod error;
 pub(crate) mod markov;
 pub(crate) mod motion;
 pub mod ode;
-pub(crate) mod path;
 pub(crate) mod piece;
 pub(crate) mod random;
 pub(crate) mod regime;
@@ -30,7 +29,7 @@ use markov::{BoundedChain, MarkovChain};
 use regime::PrimitiveMotion;
 
 /// The trajectory database and the Markov chain, bounded once per main motion (eq. 9) so that a
-/// [`FallPath`](path::FallPath) only carries its main motion. A resource of the
+/// fall only carries its main motion. A resource of the
 /// [`FallPlugin`](super::FallPlugin); replace it to use another database or chain.
 ///
 /// # Example
@@ -88,7 +87,7 @@ impl FallModel {
         self.bounded = PrimitiveMotion::ALL.map(|main| Arc::new(chain.bounded(main)));
     }
 
-    /// The chain limited to L1..`main`, shared (what a [`FallPath`](path::FallPath) holds).
+    /// The chain limited to L1..`main`, shared (what a fall holds).
     pub(crate) fn bounded_shared(&self, main: PrimitiveMotion) -> Arc<BoundedChain> {
         Arc::clone(&self.bounded[main.index()])
     }

@@ -137,8 +137,20 @@ impl FallScales {
     /// `swings` swing times: the feature vector it should have, in the database's units (length
     /// U/Ω times `swings`): glide, drop −π, a medium modulation, and an angle half-range that
     /// grows with I* (plates near the tumbling boundary swing wider).
+    #[cfg(test)]
     pub(crate) fn swing_key(&self, glide: f32, swings: f32) -> Feature {
+        self.swing_key_with(self.swing_key_angle(), glide, swings)
+    }
+
+    /// [`FallScales::swing_key`] with its angle component given (it depends on I* alone, so a
+    /// fall computes it once).
+    pub(crate) fn swing_key_with(&self, angle: f32, glide: f32, swings: f32) -> Feature {
         let unit = (self.descent_speed / self.swing_rate * swings).max(1e-12);
+        [glide.abs() / unit, -PI, 0.6, angle]
+    }
+
+    /// The search key's angle half-range: wider for plates near the tumbling boundary.
+    pub(crate) fn swing_key_angle(&self) -> f32 {
         let inertia = if self.inertia > 0.0 {
             self.inertia
         } else {
@@ -146,7 +158,7 @@ impl FallScales {
         };
         // log10 I* from 1e-3 (narrow swings) to 4e-2 (the tumbling boundary).
         let t = ((libm::log10f(inertia) + 3.0) / 1.6).clamp(0.0, 1.0);
-        [glide.abs() / unit, -PI, 0.6, 0.5 + 0.7 * t]
+        0.5 + 0.7 * t
     }
 
     /// Time of one swing (and one curve piece), s.

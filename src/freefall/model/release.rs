@@ -21,7 +21,7 @@ pub struct FallRelease {
 }
 
 /// How far above the ground a lifted object starts, m.
-pub(super) const LIFT_OFF_HOP: f32 = 0.01;
+pub(crate) const LIFT_OFF_HOP: f32 = 0.01;
 
 impl FallRelease {
     /// Let go at rest at `position`, flat, with a heading from the seed.

@@ -35,9 +35,13 @@ impl WindField {
         self.read_many(positions, f64::from(time), out);
     }
 
-    /// [`Self::velocity`] for many points (at the field's own clock), as [`Self::velocities_at`].
-    pub(crate) fn velocities(&self, positions: &[Vec3], out: &mut Vec<Vec3>) {
-        self.read_many(positions, self.time, out);
+    /// The wind at the field's own clock at `L::WIDTH` points given in lanes.
+    pub(crate) fn velocity_lanes<L: Lane>(&self, points: V3<L>) -> V3<L> {
+        let p: [Vec3; 4] = std::array::from_fn(|k| {
+            let k = k.min(L::WIDTH - 1);
+            Vec3::new(points.x.get(k), points.y.get(k), points.z.get(k))
+        });
+        self.sample_lanes::<L>(&p[..L::WIDTH], self.time)
     }
 
     fn read_many(&self, positions: &[Vec3], time: f64, out: &mut Vec<Vec3>) {

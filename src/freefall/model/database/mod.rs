@@ -117,6 +117,49 @@ pub struct TrajectoryDatabase {
     /// Each segment's standardised search-space feature, kept for the search: a search reads
     /// 16 bytes per member instead of its segment.
     scaled: Vec<Feature>,
+    /// Every segment's samples as rows (x, y, its angle progress, the tumble's progress),
+    /// segment `s` at `s × SEGMENT_SAMPLES`: what a swing samples each step, one row load a lane.
+    rows: Vec<[f32; 4]>,
+    /// Each segment's ease bounds ([`EaseBounds::of`]), and the tumble's.
+    ease: Vec<EaseBounds>,
+    tumble_ease: EaseBounds,
+}
+
+/// The range of a swing's `ease` (the term `ease · s (1 − s)²` added to an angle profile so
+/// that a swing starts at the rate the last piece ended with) that keeps the profile within
+/// [−¼, 1¼] at every sample, and the profile's own start slope (per unit of s): computed once
+/// per profile, not per swing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct EaseBounds {
+    low: f32,
+    high: f32,
+    slope: f32,
+}
+
+impl EaseBounds {
+    /// The bounds of `shape` (progress 0 → 1 over s ∈ [0, 1]).
+    fn of(shape: &[f32; SEGMENT_SAMPLES]) -> Self {
+        const OVERSHOOT: f32 = 0.25;
+        let last = (SEGMENT_SAMPLES - 1) as f32;
+        let (mut low, mut high) = (f32::NEG_INFINITY, f32::INFINITY);
+        for (i, p) in shape.iter().enumerate().take(SEGMENT_SAMPLES - 1).skip(1) {
+            let s = i as f32 / last;
+            let bump = s * (1.0 - s) * (1.0 - s);
+            low = low.max((-OVERSHOOT - p) / bump);
+            high = high.min((1.0 + OVERSHOOT - p) / bump);
+        }
+        Self {
+            low: low.min(0.0),
+            high: high.max(0.0),
+            slope: (shape[1] - shape[0]) * last,
+        }
+    }
+
+    /// The `ease` that starts the profile at slope `wanted` (progress per unit of s), held
+    /// within the bounds.
+    pub(crate) fn toward(&self, wanted: f32) -> f32 {
+        (wanted - self.slope).clamp(self.low, self.high)
+    }
 }
 
 impl Default for TrajectoryDatabase {
@@ -198,14 +241,51 @@ impl TrajectoryDatabase {
             .filter_map(|(c, k)| k.then_some(c))
             .collect();
         members.retain(|m| !m.is_empty());
+        let tumble_shape = tumble_profile(&TanabeKaneko::TUMBLE);
+        let rows = segments
+            .iter()
+            .flat_map(|s| {
+                (0..SEGMENT_SAMPLES).map(move |i| {
+                    let p = s.points[i];
+                    [p.x, p.y, s.angle_shape[i], tumble_shape[i]]
+                })
+            })
+            .collect();
         Self {
             widest: segments.iter().map(|s| s.angle_range).fold(0.0, f32::max),
+            ease: segments
+                .iter()
+                .map(|s| EaseBounds::of(&s.angle_shape))
+                .collect(),
+            tumble_ease: EaseBounds::of(&tumble_shape),
+            rows,
             segments,
-            tumble_shape: tumble_profile(&TanabeKaneko::TUMBLE),
+            tumble_shape,
             weights,
             centroids,
             members,
             scaled,
+        }
+    }
+
+    /// The rows of segment `segment` (clamped to the last one): sample i is row `base + i`.
+    pub(crate) fn row_base(&self, segment: u32) -> u32 {
+        (segment.min(self.segments.len() as u32 - 1)) * SEGMENT_SAMPLES as u32
+    }
+
+    /// Row `index` (see [`Self::row_base`]): x, y, the segment's angle progress and the
+    /// tumble's.
+    #[inline]
+    pub(crate) fn row(&self, index: usize) -> [f32; 4] {
+        self.rows[index.min(self.rows.len() - 1)]
+    }
+
+    /// The ease bounds of segment `segment`'s angle profile, or the tumble's.
+    pub(crate) fn ease_bounds(&self, segment: u32, tumble: bool) -> &EaseBounds {
+        if tumble {
+            &self.tumble_ease
+        } else {
+            &self.ease[(segment as usize).min(self.ease.len() - 1)]
         }
     }
 
@@ -289,6 +369,8 @@ impl TrajectoryDatabase {
     /// Approximate heap size, bytes.
     pub fn size_bytes(&self) -> usize {
         self.segments.len() * std::mem::size_of::<Segment>()
+            + self.rows.len() * std::mem::size_of::<[f32; 4]>()
+            + self.ease.len() * std::mem::size_of::<EaseBounds>()
             + (self.centroids.len() + self.scaled.len()) * std::mem::size_of::<Feature>()
             + self.members.iter().map(|m| m.len() * 4).sum::<usize>()
     }

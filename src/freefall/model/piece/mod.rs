@@ -141,16 +141,12 @@ impl Piece {
         let swings = choice.swings(tumble);
         let duration = (swings * scales.swing_time()).max(MIN_PIECE);
         // The start slope (progress per unit of s) the last piece's rate asks for, against the
-        // profile's own, as far as the plate stays between its start and end angles.
-        let shape = if tumble {
-            db.tumble_shape()
-        } else {
-            &db.segment(segment).angle_shape
-        };
+        // profile's own, as far as the plate stays within a quarter turn past its start and end
+        // angles ([`EaseBounds`](super::database::EaseBounds)).
         let turn = end - theta;
         let wanted = choice.rate * duration / turn;
         let ease = if wanted.is_finite() && turn.abs() > 1e-3 {
-            ease_toward(shape, wanted)
+            db.ease_bounds(segment, tumble).toward(wanted)
         } else {
             0.0
         };
@@ -178,11 +174,22 @@ impl Piece {
         flip: f32,
     ) -> Self {
         let shape = MOTION_SHAPES[motion.index()];
+        let rate = shape.rate * scales.swing_rate;
+        // Eq. 6 repeats every turn (k is whole): the curve time is kept within one, so its
+        // phase stays a bounded argument however long the fall.
+        let period = std::f32::consts::TAU / rate;
+        let start = if start.is_finite() && period.is_finite() && period > 0.0 {
+            let turns = libm::floorf(start / period);
+            (start - turns * period).clamp(0.0, period)
+        } else {
+            0.0
+        };
+        let amplitude = amplitude / (1.0 + shape.eccentricity);
         let mut curve = Self::Curve {
-            amplitude: amplitude / (1.0 + shape.eccentricity),
+            amplitude,
             eccentricity: shape.eccentricity,
             lobes: shape.lobes,
-            rate: shape.rate * scales.swing_rate,
+            rate,
             descent: scales.descent_speed,
             start,
             duration: scales.swing_time().max(MIN_PIECE),
@@ -190,9 +197,18 @@ impl Piece {
             start_position: Vec3::ZERO,
             flip_rotation: Quat::IDENTITY,
         };
-        let lanes = sample::CurveLanes::<f32>::of(&[&curve]);
-        let at_start = sample::curve_motion(&lanes, start).0.vec3();
-        let turned = sample::rotation_z((1.0, 0.0), flip).quat();
+        let mut words = [0.0; sample::WORDS];
+        {
+            use sample::curve_word::*;
+            words[AMPLITUDE] = amplitude;
+            words[AMPLITUDE_ECCENTRICITY] = amplitude * shape.eccentricity;
+            words[LOBES] = shape.lobes;
+            words[RATE] = rate;
+            words[DESCENT] = scales.descent_speed;
+        }
+        let at_start = sample::curve_motion::<f32>(&words, start).0.vec3();
+        let (sin, cos) = sin_cos(0.5 * flip);
+        let turned = Quat::from_xyzw(0.0, 0.0, sin, cos);
         if let Self::Curve {
             start_position,
             flip_rotation,
@@ -240,23 +256,6 @@ impl Piece {
             Self::Curve { flip, .. } => flip,
         }
     }
-}
-
-/// The `ease` of [`Piece::Swing`] that starts `shape` (progress 0 → 1 over s ∈ [0, 1]) at slope
-/// `wanted`, limited so that shape(s) + ease s (1 − s)² stays within [−¼, 1¼] at every sample:
-/// the swing takes up the last piece's rate, turning past its start angle (a plate still turning
-/// the other way, slowing before it reverses) or its end angle by at most a quarter of its turn.
-fn ease_toward(shape: &[f32; SEGMENT_SAMPLES], wanted: f32) -> f32 {
-    const OVERSHOOT: f32 = 0.25;
-    let last = (SEGMENT_SAMPLES - 1) as f32;
-    let (mut low, mut high) = (f32::NEG_INFINITY, f32::INFINITY);
-    for (i, p) in shape.iter().enumerate().take(SEGMENT_SAMPLES - 1).skip(1) {
-        let s = i as f32 / last;
-        let bump = s * (1.0 - s) * (1.0 - s);
-        low = low.max((-OVERSHOOT - p) / bump);
-        high = high.min((1.0 + OVERSHOOT - p) / bump);
-    }
-    (wanted - (shape[1] - shape[0]) * last).clamp(low.min(0.0), high.max(0.0))
 }
 
 /// Shortest piece, s: keeps the piece loop finite for any input.

@@ -1,0 +1,257 @@
+//! The arithmetic of a fall's step, written once for one fall or for a block's lanes
+//! ([`Lane`]): §4.2's p ← p + v dt + Δf with the drift relaxing toward the wind, the
+//! compensated move and the landing ([`fall_on`]), eq. 15's orientation ([`orient`]), and the
+//! usual step inside one piece ([`usual`]), which a block takes for all its lanes whose piece
+//! goes on. Every fall takes these through the same code whichever lane or block it is in, so
+//! its path has the same bits with lanes or without, on any number of threads, on any machine.
+
+use bevy::math::Vec3;
+
+use super::block::{Block, Constants, Consts, Hot};
+use crate::freefall::model::database::TrajectoryDatabase;
+use crate::freefall::model::piece::sample::{WORDS, sample};
+use crate::freefall::model::tilt::wind_tilt;
+use crate::math::geometry::{Q, V3};
+use crate::math::lane::Lane;
+
+/// Drift speeds below this, m/s, are still air (flushed to zero: never subnormal).
+pub(crate) const MIN_DRIFT: f32 = 1e-6;
+
+/// The part of a fall's state §4.2's move reads and writes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Motion<L> {
+    /// p_i, m.
+    pub point: V3<L>,
+    pub drift: V3<L>,
+    pub still: V3<L>,
+    pub carry: V3<L>,
+}
+
+/// `v` turned from the heading frame to the world: by ψ about +Y, from (cos ψ, sin ψ).
+#[inline]
+pub(crate) fn turned<L: Lane>(turn: (L, L), v: V3<L>) -> V3<L> {
+    let (c, s) = turn;
+    V3::new(v.x * c + v.z * s, v.y, v.z * c - v.x * s)
+}
+
+/// §4.2's p ← p + v dt + Δf for a still-fluid displacement `delta` over `dt`: the drift v
+/// relaxes toward `wind` by backward Euler, the move is carried in compensated summation (a
+/// step below f32's spacing far from the origin is kept until it adds up), and a fall that
+/// reaches the ground stops on it. Returns which lanes landed.
+#[inline]
+pub(crate) fn fall_on<L: Lane>(
+    m: &mut Motion<L>,
+    c: &Consts<L>,
+    delta: V3<L>,
+    dt: L,
+    wind: V3<L>,
+) -> L::Mask {
+    m.still = m.still.add(delta);
+    // Backward Euler on dv/dt = (u − v) / τ, 1/τ = √(U² + |u − v|²) / ℓ: never past the wind,
+    // stable at any step; in still air a decaying drift is flushed to zero.
+    let slip = wind.sub(m.drift);
+    let u = c.descent_speed;
+    let k = dt * ((u * u + slip.length_squared()).sqrt() * c.inv_drag_length);
+    let drift = m.drift.add(slip.scale(k / (L::splat(1.0) + k)));
+    let still_air = drift.length_squared().lt(L::splat(MIN_DRIFT * MIN_DRIFT));
+    m.drift = V3::select(still_air, V3::splat(Vec3::ZERO), drift);
+    let step = m.drift.scale(dt).add(delta).add(m.carry);
+    let mut next = m.point.add(step);
+    // Exact: `next` and the point are within a factor of two of each other wherever a step is
+    // smaller than the position (Sterbenz).
+    let carry = step.sub(next.sub(m.point));
+    let bounded = |v: L| v.abs().lt(L::splat(f32::INFINITY));
+    let finite = L::and(bounded(carry.x), L::and(bounded(carry.y), bounded(carry.z)));
+    m.carry = V3::select(finite, carry, V3::splat(Vec3::ZERO));
+    let landed = next.y.le(c.ground);
+    next.y = L::select(landed, c.ground, next.y);
+    m.drift = V3::select(landed, V3::splat(Vec3::ZERO), m.drift);
+    m.carry = V3::select(landed, V3::splat(Vec3::ZERO), m.carry);
+    m.point = next;
+    landed
+}
+
+/// The orientation shown at a step: eq. 15's lean downwind (`factor` of it) times the heading
+/// `yaw` times the plate's tilt in the heading frame.
+#[inline]
+pub(crate) fn orient<L: Lane>(
+    max_angle: L,
+    reference_speed: L,
+    wind: V3<L>,
+    factor: L,
+    yaw: Q<L>,
+    tilt: Q<L>,
+) -> Q<L> {
+    wind_tilt(max_angle, reference_speed, wind, factor).mul(yaw.mul(tilt))
+}
+
+/// The heading's rotation about +Y from (cos ψ/2, sin ψ/2).
+#[inline]
+pub(crate) fn yaw<L: Lane>(half: (L, L)) -> Q<L> {
+    let zero = L::splat(0.0);
+    Q::new(zero, half.1, zero, half.0)
+}
+
+macro_rules! v3 {
+    ($h:expr, $x:ident, $y:ident, $z:ident, $k:expr) => {
+        V3::new(
+            L::load(&$h.$x, $k),
+            L::load(&$h.$y, $k),
+            L::load(&$h.$z, $k),
+        )
+    };
+}
+
+macro_rules! store_v3 {
+    ($v:expr, $mask:expr, $h:expr, $x:ident, $y:ident, $z:ident, $k:expr) => {{
+        let v = $v;
+        v.x.store_where($mask, &mut $h.$x, $k);
+        v.y.store_where($mask, &mut $h.$y, $k);
+        v.z.store_where($mask, &mut $h.$z, $k);
+    }};
+}
+
+/// Writes `q` into the four columns where `mask`.
+#[inline]
+fn store_q<L: Lane>(q: Q<L>, mask: L::Mask, columns: [&mut [f32; 4]; 4], k: usize) {
+    let [x, y, z, w] = columns;
+    q.x.store_where(mask, x, k);
+    q.y.store_where(mask, y, k);
+    q.z.store_where(mask, z, k);
+    q.w.store_where(mask, w, k);
+}
+
+/// A piece's words of lanes `k..`.
+#[inline]
+pub(crate) fn words<L: Lane>(h: &Hot, k: usize) -> [L; WORDS] {
+    [
+        L::load(&h.w0, k),
+        L::load(&h.w1, k),
+        L::load(&h.w2, k),
+        L::load(&h.w3, k),
+        L::load(&h.w4, k),
+        L::load(&h.w5, k),
+        L::load(&h.w6, k),
+        L::load(&h.w7, k),
+        L::load(&h.w8, k),
+        L::load(&h.w9, k),
+        L::load(&h.w10, k),
+    ]
+}
+
+/// The motion state of lanes `k..`.
+#[inline]
+pub(crate) fn motion<L: Lane>(h: &Hot, k: usize) -> Motion<L> {
+    Motion {
+        point: v3!(h, p2x, p2y, p2z, k),
+        drift: v3!(h, vx, vy, vz, k),
+        still: v3!(h, sx, sy, sz, k),
+        carry: v3!(h, cx, cy, cz, k),
+    }
+}
+
+/// The piece sampled at piece time `t` for lanes `k..` of `block`: its displacement in the
+/// heading frame and the plate's tilt.
+#[inline]
+pub(crate) fn sample_piece<L: Lane, K: Constants>(
+    block: &Block<K>,
+    k: usize,
+    db: &TrajectoryDatabase,
+    t: L,
+) -> (V3<L>, Q<L>) {
+    let h = &block.hot;
+    let half = L::splat(0.5);
+    let rows = std::array::from_fn(|j| block.row[(k + j).min(block.row.len() - 1)]);
+    sample(
+        &words(h, k),
+        L::load(&h.inv_duration, k),
+        rows,
+        L::load(&h.tumble, k).gt(half),
+        L::load(&h.curve, k).gt(half),
+        db,
+        t,
+    )
+}
+
+/// Writes a step's end for the lanes `k..` where `mask`: the point and orientation appended to
+/// the control points, the rest of the motion, the piece's clock and offset, the landing.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn commit<L: Lane>(
+    h: &mut Hot,
+    k: usize,
+    mask: L::Mask,
+    m: &Motion<L>,
+    orientation: Q<L>,
+    t: L,
+    offset: V3<L>,
+    landed: L::Mask,
+) {
+    // p_{i−2} ← p_{i−1} ← p_i ← the new point; the orientations likewise.
+    let p1 = v3!(h, p1x, p1y, p1z, k);
+    let p2 = v3!(h, p2x, p2y, p2z, k);
+    store_v3!(p1, mask, h, p0x, p0y, p0z, k);
+    store_v3!(p2, mask, h, p1x, p1y, p1z, k);
+    store_v3!(m.point, mask, h, p2x, p2y, p2z, k);
+    let q1 = Q::new(
+        L::load(&h.q1x, k),
+        L::load(&h.q1y, k),
+        L::load(&h.q1z, k),
+        L::load(&h.q1w, k),
+    );
+    store_q(
+        q1,
+        mask,
+        [&mut h.q0x, &mut h.q0y, &mut h.q0z, &mut h.q0w],
+        k,
+    );
+    store_q(
+        orientation,
+        mask,
+        [&mut h.q1x, &mut h.q1y, &mut h.q1z, &mut h.q1w],
+        k,
+    );
+    store_v3!(m.drift, mask, h, vx, vy, vz, k);
+    store_v3!(m.still, mask, h, sx, sy, sz, k);
+    store_v3!(m.carry, mask, h, cx, cy, cz, k);
+    store_v3!(offset, mask, h, ox, oy, oz, k);
+    t.store_where(mask, &mut h.t, k);
+    let one = L::splat(1.0);
+    let was = L::load(&h.landed, k);
+    L::select(landed, one, was).store_where(mask, &mut h.landed, k);
+}
+
+/// The usual step of lanes `k..` of `block` where `go` (inside one piece, no blend, no release
+/// fading, no easing, in the air): the piece sampled at its new time, its increment turned to
+/// the world, [`fall_on`], and the orientation. Returns which lanes landed.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn usual<L: Lane, K: Constants>(
+    block: &mut Block<K>,
+    k: usize,
+    c: &Consts<L>,
+    go: L::Mask,
+    dt: L,
+    wind: V3<L>,
+    reference_speed: L,
+    db: &TrajectoryDatabase,
+) -> L::Mask {
+    let t = L::load(&block.hot.t, k) + dt;
+    let (end, tilt) = sample_piece(block, k, db, t);
+    let h = &mut block.hot;
+    let inc = end.sub(v3!(h, ox, oy, oz, k));
+    let turn = (L::load(&h.tc, k), L::load(&h.ts, k));
+    let mut m = motion(h, k);
+    let landed = fall_on(&mut m, c, turned(turn, inc), dt, wind);
+    let half = (L::load(&h.hc, k), L::load(&h.hs, k));
+    let orientation = orient(
+        c.max_angle,
+        reference_speed,
+        wind,
+        L::splat(1.0),
+        yaw(half),
+        tilt,
+    );
+    commit(h, k, go, &m, orientation, t, end, landed);
+    L::and(go, landed)
+}
