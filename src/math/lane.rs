@@ -57,10 +57,15 @@ pub(crate) trait Lane:
     fn load(column: &[f32], k: usize) -> Self;
     /// Writes the lanes where `mask` is set into `column` from `k` on, keeping the others.
     fn store_where(self, mask: Self::Mask, column: &mut [f32], k: usize);
+    /// Writes every lane into `column` from `k` on.
+    fn store(self, column: &mut [f32], k: usize);
     /// Not `mask`.
     fn not(mask: Self::Mask) -> Self::Mask;
     /// A mask with lane `k` set where `f(k)`.
     fn mask_from_fn(f: impl FnMut(usize) -> bool) -> Self::Mask;
+    /// The lanes truncated toward zero to integers (the first [`Lane::WIDTH`] of four), for
+    /// indices: callers clamp them (out of range and NaN differ by instruction set).
+    fn to_i32s(self) -> [i32; 4];
     /// Four columns from one row of four numbers a lane (`row(k)` for lane `k`): a transpose.
     fn columns(row: impl FnMut(usize) -> [f32; 4]) -> [Self; 4];
 
@@ -155,6 +160,10 @@ impl Lane for f32 {
         }
     }
     #[inline]
+    fn store(self, column: &mut [f32], k: usize) {
+        column[k] = self;
+    }
+    #[inline]
     fn not(mask: bool) -> bool {
         !mask
     }
@@ -165,6 +174,10 @@ impl Lane for f32 {
     #[inline]
     fn columns(mut row: impl FnMut(usize) -> [f32; 4]) -> [Self; 4] {
         row(0)
+    }
+    #[inline]
+    fn to_i32s(self) -> [i32; 4] {
+        [self as i32; 4]
     }
 }
 
@@ -250,6 +263,10 @@ impl Lane for f32x4 {
         column[k..k + 4].copy_from_slice(&mask.select(self, old).to_array());
     }
     #[inline]
+    fn store(self, column: &mut [f32], k: usize) {
+        column[k..k + 4].copy_from_slice(&self.to_array());
+    }
+    #[inline]
     fn not(mask: f32x4) -> f32x4 {
         mask ^ bytemuck::cast::<[u32; 4], f32x4>([u32::MAX; 4])
     }
@@ -261,5 +278,9 @@ impl Lane for f32x4 {
     #[inline]
     fn columns(mut row: impl FnMut(usize) -> [f32; 4]) -> [Self; 4] {
         f32x4::transpose([row(0), row(1), row(2), row(3)].map(f32x4::from))
+    }
+    #[inline]
+    fn to_i32s(self) -> [i32; 4] {
+        self.trunc_int().to_array()
     }
 }

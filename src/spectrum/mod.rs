@@ -34,5 +34,5 @@ mod synth;
 pub use error::SpectrumError;
 pub use fft::FftBackend;
 pub(crate) use grid::GridShape;
-pub(crate) use sample::{periodic_lerp, wrap};
+pub(crate) use sample::periodic_lerp;
 pub use synth::{Synthesizer, fbm, try_fbm};

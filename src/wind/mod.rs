@@ -33,6 +33,7 @@ mod source;
 pub use config::{SpatialMode, TemporalMode, WindConfig};
 pub use ease::WindEasing;
 pub use error::WindError;
+pub(crate) use field::Moment;
 pub use field::WindField;
 #[cfg(feature = "gizmos")]
 pub use gizmos::WindGizmos;

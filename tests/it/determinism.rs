@@ -98,3 +98,117 @@ fn falls_have_the_same_bits_with_lanes_or_without_on_any_number_of_threads() {
     assert_eq!(seen.len(), 6, "{seen:?}");
     assert!(seen.iter().all(|h| *h == seen[0]), "{seen:?}");
 }
+
+/// The bits of `leaf`'s fall (position, orientation, drift, motion, landing) after each of
+/// `steps` fixed steps in a gusty evolving wind with a fan; `around` spawns other objects before
+/// and after it and `disturb` acts on them at a given step.
+fn one_fall(
+    steps: usize,
+    around: impl Fn(&mut App) -> Vec<Entity>,
+    disturb: impl Fn(&mut App, usize, &[Entity]),
+) -> Vec<[u32; 11]> {
+    use bevy_windfall::freefall::FallPreset;
+    let mut app = headless_app();
+    let wind = WindConfig {
+        reference_speed: 6.0,
+        grid: [48, 48],
+        seed: 11,
+        temporal: TemporalMode::Evolving {
+            samples: 8,
+            period: 10.0,
+        },
+        ..default()
+    };
+    app.add_plugins(WindfallPlugins.set(WindPlugin::new(wind)));
+    app.world_mut().spawn((
+        WindSource::fan(12.0, 0.7, 14.0),
+        Transform::from_xyz(-6.0, 6.0, 0.0).looking_at(Vec3::new(0.0, 6.0, 0.0), Vec3::Y),
+    ));
+    let mut others = around(&mut app);
+    let leaf = app
+        .world_mut()
+        .spawn((
+            FallingObject {
+                seed: 7,
+                ..FallPreset::MapleLeaf.object()
+            },
+            Transform::from_xyz(0.5, 8.0, 0.0).with_rotation(Quat::from_rotation_x(0.4)),
+        ))
+        .id();
+    others.extend(around(&mut app));
+    ready(&mut app);
+    (0..steps)
+        .map(|step| {
+            disturb(&mut app, step, &others);
+            app.update();
+            let fall = app
+                .world()
+                .resource::<FallStore>()
+                .fall(leaf)
+                .expect("a fall");
+            let (p, q, v) = (fall.position(), fall.orientation(), fall.drift());
+            let bits = [p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.x, v.y, v.z].map(f32::to_bits);
+            let flags = fall.motion().index() as u32 | (u32::from(fall.landed()) << 8);
+            let mut out = [0; 11];
+            out[..10].copy_from_slice(&bits);
+            out[10] = flags;
+            out
+        })
+        .collect()
+}
+
+/// A fall depends on nothing but its own description and the wind: alone, or beside a thousand
+/// other objects spawned before and after it (of every preset, in the same lanes and blocks of
+/// the store), one of which has its transform set to NaN, one is despawned and one is given an
+/// invalid description mid-fall, it has the same bits at every step.
+#[test]
+fn a_fall_depends_only_on_its_description_and_the_wind() {
+    use bevy_windfall::freefall::FallPreset;
+    const STEPS: usize = 400;
+    let alone = one_fall(STEPS, |_| Vec::new(), |_, _, _| {});
+    let presets = [
+        FallPreset::MapleLeaf,
+        FallPreset::PaperSheet,
+        FallPreset::Coin,
+        FallPreset::Samara,
+        FallPreset::PlayingCard,
+    ];
+    let crowd = |app: &mut App| {
+        (0..500u32)
+            .map(|i| {
+                let object = FallingObject {
+                    seed: u64::from(i) + 100,
+                    ..presets[i as usize % presets.len()].object()
+                };
+                let at = Vec3::new((i % 25) as f32 - 12.0, 3.0 + (i / 25) as f32 * 0.5, 1.0);
+                app.world_mut()
+                    .spawn((object, Transform::from_translation(at)))
+                    .id()
+            })
+            .collect()
+    };
+    let disturb = |app: &mut App, step: usize, others: &[Entity]| {
+        let world = app.world_mut();
+        match step {
+            50 => {
+                world.get_mut::<Transform>(others[499]).unwrap().translation = Vec3::NAN;
+            }
+            100 => {
+                world.despawn(others[500]);
+            }
+            150 => {
+                world.get_mut::<FallingObject>(others[3]).unwrap().density = -1.0;
+            }
+            200 => {
+                world.despawn(others[0]);
+            }
+            _ => {}
+        }
+    };
+    let crowded = one_fall(STEPS, crowd, disturb);
+    for (step, (a, b)) in alone.iter().zip(&crowded).enumerate() {
+        assert_eq!(a, b, "step {step}");
+    }
+    // Not a still picture: it moved, turned and changed motion.
+    assert_ne!(alone[0], alone[STEPS - 1]);
+}

@@ -4,7 +4,9 @@
 
 use bevy::math::Vec3;
 use bevy_windfall::freefall::ode::{Integrator, OdeState, TanabeKaneko};
-use bevy_windfall::freefall::{FallModel, FallRelease, FallingObject, LeafCloud};
+use bevy_windfall::freefall::{
+    CloudRegion, FallModel, FallPath, FallRelease, FallingObject, LeafCloud, WindTilt,
+};
 
 #[test]
 fn a_cloud_refuses_the_ground_a_single_object_refuses() {
@@ -38,15 +40,74 @@ fn a_cloud_refuses_the_ground_a_single_object_refuses() {
 fn the_path_api_refuses_the_releases_the_plugin_refuses() {
     let model = FallModel::default();
     let object = FallingObject::default();
+    let regime = object.regime().unwrap();
     for position in [
         Vec3::new(1e38, 2.0, -1e38),
+        Vec3::new(1.2e38, 9.95, 0.0),
         Vec3::new(0.0, 2e7, 0.0),
+        Vec3::new(-1.0000001e7, 0.0, 0.0),
         Vec3::new(f32::NAN, 0.0, 0.0),
+        Vec3::new(0.0, f32::INFINITY, 0.0),
     ] {
+        // Every public way to start a fall: a described object's path, a bare path ...
         let refused = object
             .path(&model, FallRelease::at(position, 0.0))
             .unwrap_err();
         assert_eq!(refused.field(), "release.position", "{position}");
+        let refused = FallPath::new(
+            &model,
+            object.scales(&regime),
+            regime.main,
+            1,
+            position,
+            0.0,
+        )
+        .unwrap_err();
+        assert_eq!(refused.field(), "release.position", "{position}");
+        // ... and a cloud's region.
+        let cloud = LeafCloud {
+            region: CloudRegion {
+                min: position,
+                max: position,
+            },
+            count: 10,
+            ..LeafCloud::default()
+        };
+        let refused = cloud.leaves(&model, 0.0).unwrap_err();
+        assert!(
+            refused.field().starts_with("region."),
+            "{position}: {refused}"
+        );
+    }
+    // The ground too, and at the edge of the bounds a fall starts and stays finite.
+    let refused = FallPath::new(
+        &model,
+        object.scales(&regime),
+        regime.main,
+        1,
+        Vec3::ZERO,
+        1e30,
+    )
+    .unwrap_err();
+    assert_eq!(refused.field(), "release.ground");
+    let edge = Vec3::new(1.0e7, 1.0e7, -1.0e7);
+    let mut path = FallPath::new(
+        &model,
+        object.scales(&regime),
+        regime.main,
+        1,
+        edge,
+        f32::NEG_INFINITY,
+    )
+    .unwrap();
+    let tilt = WindTilt {
+        max_angle: 0.6,
+        reference_speed: 4.0,
+    };
+    for _ in 0..600 {
+        path.advance(&model, 1.0 / 60.0, Vec3::new(30.0, 0.0, 0.0), &tilt);
+        let (p, q) = path.smoothed(0.5);
+        assert!(p.is_finite() && q.is_finite(), "{p} {q}");
     }
 }
 

@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use bevy::math::Vec3;
 
+use crate::freefall::model::database::SearchMemo;
 use crate::freefall::model::markov::BoundedChain;
 use crate::freefall::model::motion::{FallScales, Glide};
 use crate::freefall::model::piece::Piece;
@@ -302,4 +303,9 @@ pub(crate) struct Cold {
     pub easing: Option<Box<Easing>>,
     /// Times it was let go (its first release counts).
     pub releases: u32,
+    /// Set when its motion changed or it was lifted from the ground, until the step reports it.
+    pub changed: bool,
+    pub lifted: bool,
+    /// The candidates of its last swing search.
+    pub search: SearchMemo,
 }

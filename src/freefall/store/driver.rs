@@ -11,21 +11,24 @@
 //! Bands changed, landings and motion changes are reported, and applied after the parallel
 //! part in handle order.
 
-use bevy::math::{Quat, Vec3};
+use bevy::math::Vec3;
 use bevy::tasks::TaskPool;
 use wide::f32x4;
 
-use super::block::{Block, Cold, Constants, Easing, W};
+/// The lanes of a block.
+type L1 = f32x4;
+
+use super::block::{Block, Cold, Constants, W};
 use super::kernel;
-use super::pose::shown;
-use super::slot::{Slot, StepOutcome};
+use super::slot::{Part, Slot, StepOutcome};
 use super::{Store, band_of, due_bands};
 use crate::freefall::lod::FallClock;
 use crate::freefall::model::FallModel;
 use crate::freefall::model::release::FallRelease;
 use crate::lod::Focus;
-use crate::math::geometry::V3;
+use crate::math::geometry::{Q, V3};
 use crate::math::lane::Lane;
+use crate::wind::Moment;
 use crate::wind::WindField;
 
 /// The air the falls move in.
@@ -95,6 +98,15 @@ impl<K: Constants> Store<K> {
         self.clock.tick(dt);
         let clock = self.clock;
         let kind = &self.kind;
+        // What every read of the wind on this step shares, taken once.
+        let air = match step.air {
+            Air::Field(field) => Reading::Field(field, field.moment(field.time_f64())),
+            Air::Uniform(u) => {
+                Reading::Uniform(clamp_speed(V3::of(u), FallRelease::MAX_SPEED).vec3())
+            }
+            Air::Still => Reading::Still,
+        };
+        let air = &air;
         let mut reports = Vec::new();
         let due = due_bands(clock.steps);
         for (b, band) in self.bands.iter_mut().enumerate() {
@@ -102,7 +114,7 @@ impl<K: Constants> Store<K> {
                 continue;
             }
             let run = |blocks: &mut [Block<K>], cold: &mut [Cold]| {
-                step_blocks(kind, blocks, cold, b, step, &clock)
+                step_blocks(kind, blocks, cold, b, step, air, &clock)
             };
             let blocks = band.blocks.len();
             let chunks = band
@@ -148,6 +160,7 @@ fn step_blocks<K: Constants>(
     cold: &mut [Cold],
     band: usize,
     step: &Step,
+    air: &Reading,
     clock: &FallClock,
 ) -> ChunkReport {
     let mut report = ChunkReport::default();
@@ -163,6 +176,7 @@ fn step_blocks<K: Constants>(
             &mut cold[first..first + live],
             band,
             step,
+            air,
             clock,
             &mut report,
         );
@@ -178,10 +192,10 @@ fn step_block<K: Constants>(
     cold: &mut [Cold],
     band: usize,
     step: &Step,
+    air: &Reading,
     clock: &FallClock,
     report: &mut ChunkReport,
 ) {
-    let live = cold.len();
     // The time since each fall's last step (its tier's span; a fall just let go: one step).
     let waited: [f32; W] = std::array::from_fn(|j| {
         let w = (clock.seconds - block.updated[j]) as f32;
@@ -191,90 +205,87 @@ fn step_block<K: Constants>(
             0.0
         }
     });
-    let db = step.model.database();
-    let reference_speed = step.reference_speed;
-    let mut usual = [false; W];
-    let mut landed = [false; W];
-    let mut winds = [Vec3::ZERO; W];
+    let mut outcomes = [StepOutcome::Falling; W];
+    // Which falls went one at a time (only their cold state is read again).
+    let mut alone = [false; W];
     if step.lanes {
-        let wind = air_lanes::<f32x4, K>(block, 0, &step.air);
-        for (j, w) in winds.iter_mut().enumerate() {
-            *w = Vec3::new(wind.x.get(j), wind.y.get(j), wind.z.get(j));
-        }
-        let h = &block.hot;
-        let half = f32x4::splat(0.5);
-        let dt = f32x4::from(waited);
-        let span = f32x4::load(&h.span, 0);
-        let on_time = f32x4::or(
-            span.le(f32x4::splat(0.0)),
-            dt.ge(span * f32x4::splat(1.0 - 1e-3)),
+        step_lanes(
+            kind,
+            block,
+            cold,
+            step,
+            air,
+            clock,
+            &waited,
+            &mut outcomes,
+            &mut alone,
         );
-        let inside = (f32x4::load(&h.t, 0) + dt).lt(f32x4::load(&h.duration, 0));
-        let go = f32x4::and(
-            f32x4::and(f32x4::mask_from_fn(|j| j < live), inside),
-            f32x4::and(
-                f32x4::and(f32x4::load(&h.plain, 0).gt(half), on_time),
-                f32x4::load(&h.landed, 0).lt(half),
-            ),
-        );
-        if f32x4::any(go) {
-            let c = kind.load::<f32x4>(&block.consts, 0);
-            let now_landed = kernel::usual(
-                block,
-                0,
-                &c,
-                go,
-                dt,
-                wind,
-                f32x4::splat(reference_speed),
-                db,
-            );
-            for j in 0..live {
-                usual[j] = f32x4::mask_get(go, j);
-                landed[j] = f32x4::mask_get(now_landed, j);
-            }
-        }
     } else {
-        for (j, w) in winds.iter_mut().enumerate().take(live) {
-            *w = air_lanes::<f32, K>(block, j, &step.air).vec3();
+        for (j, cold) in cold.iter_mut().enumerate() {
+            let wind = air_lanes::<f32, K>(block, j, air).vec3();
+            let mut slot = Slot { block, k: j, cold };
+            let before = slot.easing_before(clock, waited[j]);
+            outcomes[j] = slot.advance(kind, step.model, waited[j], wind, step.reference_speed);
+            slot.easing_after(before, clock);
+            alone[j] = true;
         }
     }
+    let live = cold.len();
     for (j, cold) in cold.iter_mut().enumerate() {
         let handle = block.handle[j];
-        if !usual[j] {
-            let mut slot = Slot { block, k: j, cold };
-            let before = (slot.cold.motion, slot.landed());
-            let outcome = step_slot(&mut slot, kind, step, clock, waited[j], winds[j]);
-            landed[j] = outcome == StepOutcome::Landed;
-            let after = (slot.cold.motion, slot.landed());
-            if before.0 != after.0 || (before.1 && !after.1) {
+        let h = &mut block.hot;
+        match outcomes[j] {
+            StepOutcome::Landed => {
+                report.landed.push(handle);
+                h.rest[j] = 0.0;
+            }
+            StepOutcome::Resting => {
+                if step.recycle_after.is_some_and(|t| h.rest[j] >= t) {
+                    report.recycle.push(handle);
+                }
+            }
+            StepOutcome::Falling => {}
+        }
+        if alone[j] {
+            if std::mem::take(&mut cold.changed) {
                 report.changed.push(handle);
             }
-            if before.1 && !after.1 {
+            if std::mem::take(&mut cold.lifted) {
                 report.lifted += 1;
             }
-            if outcome == StepOutcome::Resting
-                && step.recycle_after.is_some_and(|t| block.hot.rest[j] >= t)
-            {
-                report.recycle.push(handle);
+        }
+        block.updated[j] = clock.seconds;
+    }
+    report.advanced += live;
+    // Each fall's tier from where it is now, and the span its pose is shown over: until its
+    // next step on that tier, or the step just taken if longer.
+    let Some(focus) = step.focus else {
+        // No focus: every fall at full detail, every step.
+        let next = L1::splat(clock.last_dt);
+        let waited = L1::from(waited);
+        L1::select(next.gt(waited), next, waited).store_where(
+            L1::mask_from_fn(|j| j < live),
+            &mut block.hot.span,
+            0,
+        );
+        if band != 0 {
+            report
+                .moves
+                .extend(block.handle[..live].iter().map(|&handle| (handle, 0)));
+        }
+        return;
+    };
+    for (j, &waited) in waited.iter().enumerate().take(live) {
+        let handle = block.handle[j];
+        let next_tier = match kind.lod(&block.consts, j) {
+            Some(lod) => {
+                let h = &block.hot;
+                focus.tier(&lod, Vec3::new(h.p2x[j], h.p2y[j], h.p2z[j]))
             }
-        } else {
-            block.updated[j] = clock.seconds;
-        }
-        if landed[j] {
-            report.landed.push(handle);
-            block.hot.rest[j] = 0.0;
-        }
-        report.advanced += 1;
-        // Its tier from where it is now, and the span its pose is shown over: until its next
-        // step on that tier, or the step just taken if longer.
-        let position = Vec3::new(block.hot.p2x[j], block.hot.p2y[j], block.hot.p2z[j]);
-        let next_tier = match (kind.lod(&block.consts, j), step.focus) {
-            (Some(lod), Some(focus)) => focus.tier(&lod, position),
-            _ => 1,
+            None => 1,
         };
         let next = clock.steps_to_next(next_tier, handle) as f32 * clock.last_dt;
-        block.hot.span[j] = if next > waited[j] { next } else { waited[j] };
+        block.hot.span[j] = if next > waited { next } else { waited };
         let to = band_of(next_tier, handle);
         if to != band {
             report.moves.push((handle, to));
@@ -282,67 +293,157 @@ fn step_block<K: Constants>(
     }
 }
 
-/// Advances one fall that the lanes did not (see the module docs), with the bookkeeping of its
-/// tier: a step that comes before its last span was shown (a change to a finer tier), or one
-/// taken while an easing is under way, eases what is shown from where it was.
-fn step_slot<K: Constants>(
-    slot: &mut Slot<'_, K>,
+/// [`step_block`] with lanes: the wind read for the block at once; the falls whose piece goes
+/// on and those at rest in lanes; the others one at a time ([`Slot::prepare`]), their move and
+/// orientation finished in lanes with the usual ones.
+#[allow(clippy::too_many_arguments)]
+fn step_lanes<K: Constants>(
     kind: &K,
+    block: &mut Block<K>,
+    cold: &mut [Cold],
     step: &Step,
+    air: &Reading,
     clock: &FallClock,
-    waited: f32,
-    wind: Vec3,
-) -> StepOutcome {
-    let k = slot.k;
-    let now = clock.seconds;
-    let span = slot.block.hot.span[k];
-    let running = slot
-        .cold
-        .easing
-        .as_ref()
-        .map(|e| e.end)
-        .filter(|&end| end > now);
-    // (The share is a ratio of clock differences rounded to f32: a step of the same span can
-    // come out a rounding short of the whole, which is no lag worth easing.)
-    let lagging = span > 0.0 && waited < span * (1.0 - 1e-3);
-    let before = (running.is_some() || lagging).then(|| shown(slot.block, k, slot.cold, now));
-    // A new easing lasts two of the spans before (it catches up at most half a step per step);
-    // one under way keeps its end.
-    let end = running.unwrap_or(now + 2.0 * f64::from(span.max(waited)));
-    let outcome = slot.advance(kind, step.model, waited, wind, step.reference_speed);
-    slot.cold.easing = before.map(|pose| {
-        let (position, rotation) = smoothed_start(slot);
-        Box::new(Easing {
-            offset: pose.position - position,
-            turn: (pose.rotation * rotation.inverse()).normalize(),
-            start: now,
+    waited: &[f32; W],
+    outcomes: &mut [StepOutcome; W],
+    alone: &mut [bool; W],
+) {
+    type L = f32x4;
+    let live = cold.len();
+    let db = step.model.database();
+    let wind = air_lanes::<L, K>(block, 0, air);
+    let c = kind.load::<L>(&block.consts, 0);
+    let half = L::splat(0.5);
+    let dt = L::from(*waited);
+    let h = &block.hot;
+    let span = L::load(&h.span, 0);
+    let on_time = L::or(span.le(L::splat(0.0)), dt.ge(span * L::splat(1.0 - 1e-3)));
+    let plain = L::and(
+        L::and(L::mask_from_fn(|j| j < live), on_time),
+        L::load(&h.plain, 0).gt(half),
+    );
+    let landed = L::load(&h.landed, 0).gt(half);
+    let t = L::load(&h.t, 0) + dt;
+    let go = L::and(L::and(plain, L::not(landed)), t.lt(L::load(&h.duration, 0)));
+    // Resting where the wind does not lift: the shown curve settles.
+    let resting = L::and(
+        L::and(plain, landed),
+        L::not(kernel::lifts(wind, c.descent_speed)),
+    );
+    if L::any(resting) {
+        kernel::settle(&mut block.hot, 0, resting, dt);
+    }
+    // The usual sample, for the lanes whose piece goes on.
+    let (end, tilt) = if L::any(go) {
+        kernel::sample_piece(block, 0, db, t)
+    } else {
+        (V3::splat(Vec3::ZERO), Q::identity())
+    };
+    let h = &block.hot;
+    let offset = V3::new(L::load(&h.ox, 0), L::load(&h.oy, 0), L::load(&h.oz, 0));
+    let delta = kernel::turned((L::load(&h.tc, 0), L::load(&h.ts, 0)), end.sub(offset));
+    // The others, one at a time: what lanes cannot share.
+    let mut moves: [Option<(Vec3, Q<f32>)>; W] = [None; W];
+    let mut easings = [None; W];
+    for (j, cold) in cold.iter_mut().enumerate() {
+        if L::mask_get(go, j) {
+            continue;
+        }
+        if L::mask_get(resting, j) {
+            outcomes[j] = StepOutcome::Resting;
+            continue;
+        }
+        let w = Vec3::new(wind.x.get(j), wind.y.get(j), wind.z.get(j));
+        let mut slot = Slot { block, k: j, cold };
+        alone[j] = true;
+        easings[j] = Some(slot.easing_before(clock, waited[j]));
+        match slot.prepare(kind, step.model, waited[j], w, step.reference_speed) {
+            Part::Done(outcome) => outcomes[j] = outcome,
+            Part::Move { delta, tilt } => moves[j] = Some((delta, tilt)),
+        }
+    }
+    // The move and the orientation, in lanes, for all that move.
+    let moving = L::or(go, L::mask_from_fn(|j| moves[j].is_some()));
+    if L::any(moving) {
+        let h = &block.hot;
+        let t = L::select(go, t, L::load(&h.t, 0));
+        let offset = V3::select(
+            go,
             end,
-        })
-    });
-    slot.block.updated[k] = now;
-    slot.set_plain();
-    outcome
+            V3::new(L::load(&h.ox, 0), L::load(&h.oy, 0), L::load(&h.oz, 0)),
+        );
+        let part = |f: fn(&(Vec3, Q<f32>)) -> f32, none: f32| {
+            L::from_fn(|j| moves[j].as_ref().map_or(none, f))
+        };
+        let delta = V3::select(
+            go,
+            delta,
+            V3::new(
+                part(|m| m.0.x, 0.0),
+                part(|m| m.0.y, 0.0),
+                part(|m| m.0.z, 0.0),
+            ),
+        );
+        let tilt = Q::select(
+            go,
+            tilt,
+            Q::new(
+                part(|m| m.1.x, 0.0),
+                part(|m| m.1.y, 0.0),
+                part(|m| m.1.z, 0.0),
+                part(|m| m.1.w, 1.0),
+            ),
+        );
+        let landed = kernel::finish(
+            &mut block.hot,
+            0,
+            moving,
+            &c,
+            t,
+            offset,
+            delta,
+            tilt,
+            dt,
+            wind,
+            L::splat(step.reference_speed),
+        );
+        for (j, outcome) in outcomes.iter_mut().enumerate().take(live) {
+            if L::mask_get(moving, j) {
+                *outcome = if L::mask_get(landed, j) {
+                    StepOutcome::Landed
+                } else {
+                    StepOutcome::Falling
+                };
+            }
+        }
+    }
+    for (j, cold) in cold.iter_mut().enumerate() {
+        if let Some(before) = easings[j] {
+            Slot { block, k: j, cold }.easing_after(before, clock);
+        }
+    }
 }
 
-/// The pose shown right after a step (at the start of its span).
-fn smoothed_start<K: Constants>(slot: &Slot<'_, K>) -> (Vec3, Quat) {
-    let (p, q) = super::pose::smoothed::<f32>(&slot.block.hot, slot.k, 0.0);
-    (p.vec3(), q.quat())
+/// The air of one step, with what its reads share.
+enum Reading<'a> {
+    Still,
+    Field(&'a WindField, Moment),
+    /// Already held to [`FallRelease::MAX_SPEED`].
+    Uniform(Vec3),
 }
 
 /// The air's velocity at lanes `k..` of `block` (where each fall is), held to
 /// [`FallRelease::MAX_SPEED`].
-fn air_lanes<L: Lane, K: Constants>(block: &Block<K>, k: usize, air: &Air) -> V3<L> {
+fn air_lanes<L: Lane, K: Constants>(block: &Block<K>, k: usize, air: &Reading) -> V3<L> {
     let h = &block.hot;
-    let wind = match air {
-        Air::Still => return V3::splat(Vec3::ZERO),
-        Air::Uniform(u) => V3::splat(*u),
-        Air::Field(field) => {
+    match air {
+        Reading::Still => V3::splat(Vec3::ZERO),
+        Reading::Uniform(u) => V3::splat(*u),
+        Reading::Field(field, moment) => {
             let p = V3::new(L::load(&h.p2x, k), L::load(&h.p2y, k), L::load(&h.p2z, k));
-            field.velocity_lanes(p)
+            clamp_speed(field.velocity_lanes(moment, p), FallRelease::MAX_SPEED)
         }
-    };
-    clamp_speed(wind, FallRelease::MAX_SPEED)
+    }
 }
 
 /// `v` held to `max` long (a non-finite vector: zero), lane by lane: the usual case with no

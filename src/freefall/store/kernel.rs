@@ -7,7 +7,7 @@
 
 use bevy::math::Vec3;
 
-use super::block::{Block, Constants, Consts, Hot};
+use super::block::{Block, Constants, Consts, Hot, W};
 use crate::freefall::model::database::TrajectoryDatabase;
 use crate::freefall::model::piece::sample::{WORDS, sample};
 use crate::freefall::model::tilt::wind_tilt;
@@ -173,6 +173,20 @@ pub(crate) fn sample_piece<L: Lane, K: Constants>(
     )
 }
 
+/// Where the swing of lane `k` of `block` ends (its segment's last sample, heading frame).
+#[inline]
+pub(crate) fn swing_end<K: Constants>(
+    block: &Block<K>,
+    k: usize,
+    db: &TrajectoryDatabase,
+) -> V3<f32> {
+    use crate::freefall::model::database::SEGMENT_SAMPLES;
+    use crate::freefall::model::piece::sample::swing_word::{X_SCALE, Y_SCALE};
+    let row = db.row(block.row[k] as usize + SEGMENT_SAMPLES - 1);
+    let words = words::<f32>(&block.hot, k);
+    V3::new(words[X_SCALE] * row[0], words[Y_SCALE] * row[1], 0.0)
+}
+
 /// Writes a step's end for the lanes `k..` where `mask`: the point and orientation appended to
 /// the control points, the rest of the motion, the piece's clock and offset, the landing.
 #[inline]
@@ -187,12 +201,95 @@ pub(crate) fn commit<L: Lane>(
     offset: V3<L>,
     landed: L::Mask,
 ) {
+    // Every lane (the usual case): plain stores.
+    if L::all(mask) {
+        write(h, k, m, orientation, t, offset, landed, |v, column| {
+            v.store(column, k)
+        });
+    } else {
+        write(h, k, m, orientation, t, offset, landed, |v, column| {
+            v.store_where(mask, column, k)
+        });
+    }
+}
+
+/// [`commit`]'s writes, each through `put`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn write<L: Lane>(
+    h: &mut Hot,
+    k: usize,
+    m: &Motion<L>,
+    orientation: Q<L>,
+    t: L,
+    offset: V3<L>,
+    landed: L::Mask,
+    put: impl Fn(L, &mut [f32; W]),
+) {
     // p_{i−2} ← p_{i−1} ← p_i ← the new point; the orientations likewise.
+    let p1 = v3!(h, p1x, p1y, p1z, k);
+    let p2 = v3!(h, p2x, p2y, p2z, k);
+    let q1 = [
+        L::load(&h.q1x, k),
+        L::load(&h.q1y, k),
+        L::load(&h.q1z, k),
+        L::load(&h.q1w, k),
+    ];
+    let was = L::load(&h.landed, k);
+    for (v, column) in [
+        (p1.x, &mut h.p0x),
+        (p1.y, &mut h.p0y),
+        (p1.z, &mut h.p0z),
+        (p2.x, &mut h.p1x),
+        (p2.y, &mut h.p1y),
+        (p2.z, &mut h.p1z),
+        (m.point.x, &mut h.p2x),
+        (m.point.y, &mut h.p2y),
+        (m.point.z, &mut h.p2z),
+        (q1[0], &mut h.q0x),
+        (q1[1], &mut h.q0y),
+        (q1[2], &mut h.q0z),
+        (q1[3], &mut h.q0w),
+        (orientation.x, &mut h.q1x),
+        (orientation.y, &mut h.q1y),
+        (orientation.z, &mut h.q1z),
+        (orientation.w, &mut h.q1w),
+        (m.drift.x, &mut h.vx),
+        (m.drift.y, &mut h.vy),
+        (m.drift.z, &mut h.vz),
+        (m.still.x, &mut h.sx),
+        (m.still.y, &mut h.sy),
+        (m.still.z, &mut h.sz),
+        (m.carry.x, &mut h.cx),
+        (m.carry.y, &mut h.cy),
+        (m.carry.z, &mut h.cz),
+        (offset.x, &mut h.ox),
+        (offset.y, &mut h.oy),
+        (offset.z, &mut h.oz),
+        (t, &mut h.t),
+        (L::select(landed, L::splat(1.0), was), &mut h.landed),
+    ] {
+        put(v, column);
+    }
+}
+
+/// Whether `wind` lifts a resting fall of descent speed `u` again: faster than
+/// [`FallRelease::LIFT_OFF_FACTOR`](crate::freefall::FallRelease::LIFT_OFF_FACTOR) × U.
+#[inline]
+pub(crate) fn lifts<L: Lane>(wind: V3<L>, u: L) -> L::Mask {
+    let least = L::splat(crate::freefall::FallRelease::LIFT_OFF_FACTOR) * u;
+    wind.length_squared().gt(least * least)
+}
+
+/// A resting fall's step for lanes `k..` where `mask`: the shown curve settles on the resting
+/// point (p_{i−2} ← p_{i−1} ← p_i, the orientations likewise) and `dt` more seconds on the
+/// ground.
+#[inline]
+pub(crate) fn settle<L: Lane>(h: &mut Hot, k: usize, mask: L::Mask, dt: L) {
     let p1 = v3!(h, p1x, p1y, p1z, k);
     let p2 = v3!(h, p2x, p2y, p2z, k);
     store_v3!(p1, mask, h, p0x, p0y, p0z, k);
     store_v3!(p2, mask, h, p1x, p1y, p1z, k);
-    store_v3!(m.point, mask, h, p2x, p2y, p2z, k);
     let q1 = Q::new(
         L::load(&h.q1x, k),
         L::load(&h.q1y, k),
@@ -205,53 +302,32 @@ pub(crate) fn commit<L: Lane>(
         [&mut h.q0x, &mut h.q0y, &mut h.q0z, &mut h.q0w],
         k,
     );
-    store_q(
-        orientation,
-        mask,
-        [&mut h.q1x, &mut h.q1y, &mut h.q1z, &mut h.q1w],
-        k,
-    );
-    store_v3!(m.drift, mask, h, vx, vy, vz, k);
-    store_v3!(m.still, mask, h, sx, sy, sz, k);
-    store_v3!(m.carry, mask, h, cx, cy, cz, k);
-    store_v3!(offset, mask, h, ox, oy, oz, k);
-    t.store_where(mask, &mut h.t, k);
-    let one = L::splat(1.0);
-    let was = L::load(&h.landed, k);
-    L::select(landed, one, was).store_where(mask, &mut h.landed, k);
+    (L::load(&h.rest, k) + dt).store_where(mask, &mut h.rest, k);
 }
 
-/// The usual step of lanes `k..` of `block` where `go` (inside one piece, no blend, no release
-/// fading, no easing, in the air): the piece sampled at its new time, its increment turned to
-/// the world, [`fall_on`], and the orientation. Returns which lanes landed.
+/// The rest of a step for lanes `k..` where `mask`, once the still-fluid displacement `delta`
+/// (world frame) and the plate's `tilt` are known and the piece's clock `t` and offset are
+/// moved on: [`fall_on`] and the orientation. Returns which lanes landed.
 #[inline]
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn usual<L: Lane, K: Constants>(
-    block: &mut Block<K>,
+pub(crate) fn finish<L: Lane>(
+    h: &mut Hot,
     k: usize,
+    mask: L::Mask,
     c: &Consts<L>,
-    go: L::Mask,
+    t: L,
+    offset: V3<L>,
+    delta: V3<L>,
+    tilt: Q<L>,
     dt: L,
     wind: V3<L>,
     reference_speed: L,
-    db: &TrajectoryDatabase,
 ) -> L::Mask {
-    let t = L::load(&block.hot.t, k) + dt;
-    let (end, tilt) = sample_piece(block, k, db, t);
-    let h = &mut block.hot;
-    let inc = end.sub(v3!(h, ox, oy, oz, k));
-    let turn = (L::load(&h.tc, k), L::load(&h.ts, k));
     let mut m = motion(h, k);
-    let landed = fall_on(&mut m, c, turned(turn, inc), dt, wind);
+    let landed = fall_on(&mut m, c, delta, dt, wind);
     let half = (L::load(&h.hc, k), L::load(&h.hs, k));
-    let orientation = orient(
-        c.max_angle,
-        reference_speed,
-        wind,
-        L::splat(1.0),
-        yaw(half),
-        tilt,
-    );
-    commit(h, k, go, &m, orientation, t, end, landed);
-    L::and(go, landed)
+    let one = L::splat(1.0);
+    let orientation = orient(c.max_angle, reference_speed, wind, one, yaw(half), tilt);
+    commit(h, k, mask, &m, orientation, t, offset, landed);
+    L::and(mask, landed)
 }

@@ -30,6 +30,9 @@ pub(crate) mod pose;
 pub(crate) mod slot;
 pub(crate) mod view;
 
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
 use self::block::{Block, Cold, Constants, W};
 use self::slot::{FallStart, Slot, blank_cold};
 use crate::freefall::lod::FallClock;
@@ -91,7 +94,7 @@ impl<K: Constants> Band<K> {
     /// Appends a fall whose cold state is `cold` (its lanes to be written); returns its index.
     fn push(&mut self, cold: Cold) -> usize {
         let s = self.cold.len();
-        if s % W == 0 {
+        if s.is_multiple_of(W) {
             self.blocks.push(Block::default());
         }
         self.cold.push(cold);
@@ -111,7 +114,7 @@ impl<K: Constants> Band<K> {
         });
         let cold = self.cold.swap_remove(s);
         // The lanes past the end are left as they are: never read as falls.
-        if last % W == 0 {
+        if last.is_multiple_of(W) {
             self.blocks.pop();
         }
         (taken, cold, moved)
@@ -136,7 +139,8 @@ pub(crate) struct Store<K: Constants> {
     pub kind: K,
     pub bands: [Band<K>; BANDS],
     places: Vec<Place>,
-    free: Vec<u32>,
+    /// Handles given back, the lowest first.
+    free: BinaryHeap<Reverse<u32>>,
     /// Seconds and fixed steps taken, and the last step's length.
     pub clock: FallClock,
     /// Falls on the ground.
@@ -150,7 +154,7 @@ impl<K: Constants> Store<K> {
             kind,
             bands: Default::default(),
             places: Vec::new(),
-            free: Vec::new(),
+            free: BinaryHeap::new(),
             clock: FallClock::default(),
             resting: 0,
         }
@@ -169,7 +173,7 @@ impl<K: Constants> Store<K> {
     /// Lets a new fall go as `start` says; returns its handle (the lowest free one).
     pub fn insert(&mut self, model: &FallModel, start: &FallStart) -> u32 {
         let handle = match self.free.pop() {
-            Some(h) => h,
+            Some(Reverse(h)) => h,
             None => {
                 self.places.push(Place {
                     band: Place::FREE,
@@ -219,9 +223,7 @@ impl<K: Constants> Store<K> {
             self.places[moved as usize].index = place.index;
         }
         self.places[handle as usize].band = Place::FREE;
-        self.free.push(handle);
-        // The lowest free handle next.
-        self.free.sort_unstable_by(|a, b| b.cmp(a));
+        self.free.push(Reverse(handle));
     }
 
     /// Where fall `handle` is.

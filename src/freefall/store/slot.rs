@@ -9,10 +9,12 @@ use std::sync::Arc;
 
 use bevy::math::{Quat, Vec3};
 
-use super::block::{Blend, Block, Cold, Constants, FallConstants, Hot, ReleaseFade};
-use super::kernel::{Motion, commit, fall_on, motion, orient, sample_piece, turned, usual, yaw};
+use super::block::{Blend, Block, Cold, Constants, Easing, FallConstants, Hot, ReleaseFade};
+use super::kernel::{self, Motion, commit, fall_on, motion, orient, sample_piece, turned, yaw};
+use super::pose::{LeafPose, shown, smoothed};
+use crate::freefall::lod::FallClock;
 use crate::freefall::model::FallModel;
-use crate::freefall::model::database::TrajectoryDatabase;
+use crate::freefall::model::database::{SearchMemo, TrajectoryDatabase};
 use crate::freefall::model::markov::BoundedChain;
 use crate::freefall::model::motion::{FallScales, Glide, next_glide};
 use crate::freefall::model::piece::{Piece, SwingChoice};
@@ -58,6 +60,16 @@ pub(crate) struct FallStart {
     pub lod: Option<LodTiers>,
 }
 
+/// What [`Slot::prepare`] leaves to finish.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Part {
+    /// Nothing: the step is done, and did this.
+    Done(StepOutcome),
+    /// The move (the still-fluid displacement `delta`, world frame, m) and the orientation
+    /// (the plate's `tilt` in the heading frame): the piece's clock and offset are written.
+    Move { delta: Vec3, tilt: Q<f32> },
+}
+
 /// One fall of a store: lane `k` of `block` and its cold state.
 pub(crate) struct Slot<'a, K: Constants> {
     pub block: &'a mut Block<K>,
@@ -86,6 +98,9 @@ pub(crate) fn blank_cold(start: &FallStart) -> Cold {
         release: None,
         easing: None,
         releases: 1,
+        changed: false,
+        lifted: false,
+        search: SearchMemo::default(),
     }
 }
 
@@ -219,6 +234,47 @@ impl<K: Constants> Slot<'_, K> {
         self.cold.markov_steps = markov_steps;
         self.cold.easing = easing;
         self.block.hot.span[k] = span;
+        self.cold.changed = true;
+        self.cold.lifted = true;
+        self.set_plain();
+    }
+
+    /// What a step at `clock` after `waited` seconds must ease the shown pose from: the pose
+    /// shown now, if the step comes before the last span was shown (a change to a finer tier)
+    /// or an easing is under way, and when the easing will end.
+    pub fn easing_before(&self, clock: &FallClock, waited: f32) -> Option<(LeafPose, f64)> {
+        let k = self.k;
+        let now = clock.seconds;
+        let span = self.block.hot.span[k];
+        let running = self
+            .cold
+            .easing
+            .as_ref()
+            .map(|e| e.end)
+            .filter(|&end| end > now);
+        // (The share is a ratio of clock differences rounded to f32: a step of the same span
+        // can come out a rounding short of the whole, which is no lag worth easing.)
+        let lagging = span > 0.0 && waited < span * (1.0 - 1e-3);
+        // A new easing lasts two of the spans before (it catches up at most half a step per
+        // step); one under way keeps its end.
+        let end = running.unwrap_or(now + 2.0 * f64::from(span.max(waited)));
+        (running.is_some() || lagging).then(|| (shown(self.block, k, self.cold, now), end))
+    }
+
+    /// Eases the shown pose after a step from `before` ([`Slot::easing_before`]): the offset
+    /// and turn from the pose the step shows at its start, fading out by the easing's end.
+    pub fn easing_after(&mut self, before: Option<(LeafPose, f64)>, clock: &FallClock) {
+        let k = self.k;
+        self.cold.easing = before.map(|(pose, end)| {
+            let (p, q) = smoothed::<f32>(&self.block.hot, k, 0.0);
+            let (position, rotation) = (p.vec3(), q.quat());
+            Box::new(Easing {
+                offset: pose.position - position,
+                turn: (pose.rotation * rotation.inverse()).normalize(),
+                start: clock.seconds,
+                end,
+            })
+        });
         self.set_plain();
     }
 
@@ -244,7 +300,8 @@ impl<K: Constants> Slot<'_, K> {
     /// [`FallRelease::MAX_SPEED`]): §4.2's p ← p + v dt + Δf, the drift relaxing toward the wind
     /// over [`FallScales::response_time`], Δf the still-fluid path's increment across as many
     /// pieces as the step crosses, and the orientation with eq. 15's tilt. A resting fall
-    /// settles, or is lifted by a strong enough wind.
+    /// settles, or is lifted by a strong enough wind. ([`Slot::prepare`], then the move the
+    /// lanes finish, one lane wide.)
     pub fn advance(
         &mut self,
         kind: &K,
@@ -253,54 +310,96 @@ impl<K: Constants> Slot<'_, K> {
         wind: Vec3,
         reference_speed: f32,
     ) -> StepOutcome {
+        match self.prepare(kind, model, dt, wind, reference_speed) {
+            Part::Done(outcome) => outcome,
+            Part::Move { delta, tilt } => {
+                let k = self.k;
+                let c = kind.load::<f32>(&self.block.consts, k);
+                let h = &mut self.block.hot;
+                let (t, offset) = (h.t[k], V3::new(h.ox[k], h.oy[k], h.oz[k]));
+                let landed = kernel::finish::<f32>(
+                    h,
+                    k,
+                    true,
+                    &c,
+                    t,
+                    offset,
+                    V3::of(delta),
+                    tilt,
+                    dt,
+                    V3::of(wind),
+                    reference_speed,
+                );
+                if landed {
+                    StepOutcome::Landed
+                } else {
+                    StepOutcome::Falling
+                }
+            }
+        }
+    }
+
+    /// The part of a step taken one fall at a time: a resting fall settles or is lifted; the
+    /// piece is sampled at its new time, or crossed into the next ones (the Markov step, the
+    /// swing search), blended from the last motion's; a fall whose release orientation is still
+    /// fading is stepped whole. What is left, the move and the orientation of [`Part::Move`],
+    /// the lanes finish ([`kernel::finish`]) for many falls at once.
+    pub fn prepare(
+        &mut self,
+        kind: &K,
+        model: &FallModel,
+        dt: f32,
+        wind: Vec3,
+        reference_speed: f32,
+    ) -> Part {
         let k = self.k;
         if self.landed() {
             let c = kind.get(&self.block.consts, k);
-            if wind.length() > FallRelease::LIFT_OFF_FACTOR * c.descent_speed {
+            if kernel::lifts::<f32>(V3::of(wind), c.descent_speed) {
                 self.lift_off(kind, model, wind);
             } else {
-                // Let the shown curve settle on the resting point.
-                let h = &mut self.block.hot;
-                (h.p0x[k], h.p0y[k], h.p0z[k]) = (h.p1x[k], h.p1y[k], h.p1z[k]);
-                (h.p1x[k], h.p1y[k], h.p1z[k]) = (h.p2x[k], h.p2y[k], h.p2z[k]);
-                (h.q0x[k], h.q0y[k], h.q0z[k], h.q0w[k]) = (h.q1x[k], h.q1y[k], h.q1z[k], h.q1w[k]);
-                h.rest[k] += dt;
-                return StepOutcome::Resting;
+                kernel::settle::<f32>(&mut self.block.hot, k, true, dt);
+                return Part::Done(StepOutcome::Resting);
             }
         }
         let db = model.database();
-        let consts = kind.load::<f32>(&self.block.consts, k);
         let plain = self.cold.previous.is_none() && self.cold.release.is_none();
         let h = &self.block.hot;
-        let landed = if plain && h.t[k] + dt < h.duration[k] {
-            // Inside one piece: the step the lanes take, one lane wide.
-            usual::<f32, K>(
-                self.block,
-                k,
-                &consts,
-                true,
-                dt,
-                V3::of(wind),
-                reference_speed,
-                db,
-            )
-        } else {
-            let (delta, tilt) = self.still_step(model, dt, wind);
-            let mut m: Motion<f32> = motion(&self.block.hot, k);
-            let landed = fall_on(&mut m, &consts, V3::of(delta), dt, V3::of(wind));
-            let orientation =
-                self.orientation_now(db, consts.max_angle, reference_speed, wind, tilt, dt);
+        if plain && h.t[k] + dt < h.duration[k] {
+            // Inside one piece: the lanes' usual sample, one lane wide.
+            let t = h.t[k] + dt;
+            let (end, tilt) = sample_piece::<f32, K>(self.block, k, db, t);
             let h = &mut self.block.hot;
-            let (t, offset) = (h.t[k], V3::new(h.ox[k], h.oy[k], h.oz[k]));
-            commit::<f32>(h, k, true, &m, orientation, t, offset, landed);
-            self.set_plain();
-            landed
+            let inc = end.sub(V3::new(h.ox[k], h.oy[k], h.oz[k]));
+            h.t[k] = t;
+            (h.ox[k], h.oy[k], h.oz[k]) = (end.x, end.y, end.z);
+            let delta = turned((h.tc[k], h.ts[k]), inc).vec3();
+            return Part::Move { delta, tilt };
+        }
+        let (delta, tilt) = self.still_step(model, dt, wind);
+        let tilt = match &self.cold.previous {
+            Some(old) => Q::of(old.piece.tilt(db, old.time))
+                .slerp(tilt, smoothstep(old.elapsed / old.length)),
+            None => tilt,
         };
-        if landed {
+        if self.cold.release.is_none() {
+            self.set_plain();
+            return Part::Move { delta, tilt };
+        }
+        // The release orientation fading: this fall's orientation is its own.
+        let c = kind.load::<f32>(&self.block.consts, k);
+        let mut m: Motion<f32> = motion(&self.block.hot, k);
+        let landed = fall_on(&mut m, &c, V3::of(delta), dt, V3::of(wind));
+        let orientation = self.fading(c.max_angle, reference_speed, wind, tilt, dt);
+        let h = &mut self.block.hot;
+        let (t, offset) = (h.t[k], V3::new(h.ox[k], h.oy[k], h.oz[k]));
+        commit::<f32>(h, k, true, &m, orientation, t, offset, landed);
+        self.set_plain();
+        Part::Done(if landed {
             StepOutcome::Landed
         } else {
             StepOutcome::Falling
-        }
+        })
     }
 
     /// Still-fluid displacement over `dt` (world frame), crossing pieces as needed, and the
@@ -318,13 +417,22 @@ impl<K: Constants> Slot<'_, K> {
             let (t, duration) = (h.t[k], h.duration[k]);
             let left = (duration - t).max(0.0);
             let step = remaining.min(left);
-            let (end, piece_tilt) = sample_piece::<f32, K>(self.block, k, db, t + step);
+            // To a swing's end: its last sample (the next piece's tilt follows); elsewhere the
+            // piece sampled.
+            let crossing = remaining >= left;
+            let end = if crossing && h.curve[k] < 0.5 {
+                tilt = None;
+                kernel::swing_end(self.block, k, db)
+            } else {
+                let (end, piece_tilt) = sample_piece::<f32, K>(self.block, k, db, t + step);
+                tilt = Some(piece_tilt);
+                end
+            };
             let h = &mut self.block.hot;
             let offset = V3::new(h.ox[k], h.oy[k], h.oz[k]);
             let mut inc = end.sub(offset);
             (h.ox[k], h.oy[k], h.oz[k]) = (end.x, end.y, end.z);
             h.t[k] = t + step;
-            tilt = Some(piece_tilt);
             if let Some(old) = self.cold.previous.as_mut() {
                 let w = smoothstep((old.elapsed + 0.5 * step) / old.length);
                 let old_end = old.piece.offset(db, old.time + step);
@@ -339,12 +447,14 @@ impl<K: Constants> Slot<'_, K> {
             delta = delta.add(turned(turn, inc));
             remaining -= step;
             if t + step >= duration {
-                tilt = Some(self.next_piece(model, wind));
+                // The new piece's tilt at its start is sampled only if the step ends there.
+                self.next_piece(model, wind);
+                tilt = None;
                 crossed += 1;
             }
         }
         if remaining > 0.0 {
-            delta.y = delta.y - self.cold.scales.descent_speed * remaining;
+            delta.y -= self.cold.scales.descent_speed * remaining;
             self.cold.piece_start += f64::from(remaining);
         }
         let tilt = tilt.unwrap_or_else(|| {
@@ -355,8 +465,8 @@ impl<K: Constants> Slot<'_, K> {
     }
 
     /// The Markov step at the end of a piece (§3.2: the motion changes when its sojourn is
-    /// over), then the next piece; returns the new piece's tilt at its start.
-    fn next_piece(&mut self, model: &FallModel, wind: Vec3) -> Q<f32> {
+    /// over), then the next piece.
+    fn next_piece(&mut self, model: &FallModel, wind: Vec3) {
         let db = model.database();
         let k = self.k;
         let cold = &mut *self.cold;
@@ -375,6 +485,7 @@ impl<K: Constants> Slot<'_, K> {
         let changed = next != cold.motion;
         if changed {
             cold.enter_motion(next);
+            cold.changed = true;
         }
         let theta = old.end_angle();
         let survival = cold
@@ -396,31 +507,21 @@ impl<K: Constants> Slot<'_, K> {
         h.t[k] = 0.0;
         (h.ox[k], h.oy[k], h.oz[k]) = (0.0, 0.0, 0.0);
         write_piece(self.block, k, &piece, db);
-        sample_piece::<f32, K>(self.block, k, db, 0.0).1
     }
 
-    /// The orientation at the end of a step that crossed pieces, blends or fades (see
-    /// [`orient`] for the usual one).
-    fn orientation_now(
+    /// The orientation while the release orientation fades (see [`orient`] for the others):
+    /// the residual of the release slerped away, eq. 15's lean growing with it.
+    fn fading(
         &mut self,
-        db: &TrajectoryDatabase,
         max_angle: f32,
         reference_speed: f32,
         wind: Vec3,
-        piece_tilt: Q<f32>,
+        piece: Q<f32>,
         dt: f32,
     ) -> Q<f32> {
         let k = self.k;
-        let piece = match &self.cold.previous {
-            Some(old) => Q::of(old.piece.tilt(db, old.time))
-                .slerp(piece_tilt, smoothstep(old.elapsed / old.length)),
-            None => piece_tilt,
-        };
         let heading = yaw((self.block.hot.hc[k], self.block.hot.hs[k]));
-        let wind = V3::of(wind);
-        let Some(release) = self.cold.release.as_mut() else {
-            return orient(max_angle, reference_speed, wind, 1.0, heading, piece);
-        };
+        let release = self.cold.release.as_mut().expect("a release fading");
         release.elapsed += dt;
         let w = smoothstep(release.elapsed / release.length);
         let residual = Q::of(release.residual).slerp(Q::identity(), w);
@@ -430,7 +531,7 @@ impl<K: Constants> Slot<'_, K> {
         let lean = orient(
             max_angle,
             reference_speed,
-            wind,
+            V3::of(wind),
             w,
             Q::identity(),
             Q::identity(),
@@ -487,10 +588,10 @@ impl Cold {
             let key =
                 self.scales
                     .swing_key_with(self.key_angle, glide_to, choice.swings(same_side));
-            let segment = db.find(&key, &mut self.rng);
+            let segment = db.find_remembered(&key, &mut self.rng, &mut self.search);
             return Piece::swing(db, &self.scales, segment, choice);
         }
-        let flip = PI * libm::roundf(theta / PI);
+        let flip = PI * crate::math::kernels::round(theta / PI);
         match old {
             // The same curve carries on from where it was.
             Some(Piece::Curve {

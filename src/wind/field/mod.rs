@@ -97,6 +97,7 @@ pub struct WindField {
 mod live;
 pub(crate) mod profile;
 mod read;
+pub(crate) use read::Moment;
 
 /// Numbers the fields made by [`WindField::new`].
 static GENERATIONS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);

@@ -7,8 +7,9 @@ use wide::f32x4;
 use super::WindField;
 use super::profile;
 use crate::math::geometry::V3;
+use crate::math::kernels::{clamp, floor};
 use crate::math::lane::Lane;
-use crate::spectrum::{periodic_lerp, wrap};
+use crate::spectrum::periodic_lerp;
 use crate::wind::config::{SpatialMode, TemporalMode};
 
 impl WindField {
@@ -35,24 +36,72 @@ impl WindField {
         self.read_many(positions, f64::from(time), out);
     }
 
-    /// The wind at the field's own clock at `L::WIDTH` points given in lanes.
-    pub(crate) fn velocity_lanes<L: Lane>(&self, points: V3<L>) -> V3<L> {
-        let p: [Vec3; 4] = std::array::from_fn(|k| {
-            let k = k.min(L::WIDTH - 1);
-            Vec3::new(points.x.get(k), points.y.get(k), points.z.get(k))
-        });
-        self.sample_lanes::<L>(&p[..L::WIDTH], self.time)
+    /// What every read at `time` shares (see [`Moment`]): taken once for a batch of reads.
+    pub(crate) fn moment(&self, time: f64) -> Moment {
+        let time = if time.is_finite() { time } else { 0.0 };
+        let dims = self.shape.dims();
+        let (nt, nx, nz) = match *dims {
+            [nt, nx, nz] => (nt, nx, nz),
+            [nx, nz] => (1, nx, nz),
+            _ => (1, 1, 1),
+        };
+        let cell = f64::from(self.config.cell_size);
+        let travel = self.drift_at(time);
+        let shift = |d: f64, n: usize| {
+            let period = n as f64 * cell;
+            let r = d - (d / period).floor() * period;
+            if r.is_finite() { r as f32 } else { 0.0 }
+        };
+        let slice = match self.config.temporal {
+            TemporalMode::Evolving { samples, period } if nt > 1 => {
+                let c = time / f64::from(period) * samples as f64;
+                let c = c - (c / nt as f64).floor() * nt as f64;
+                let c = if c.is_finite() {
+                    c.clamp(0.0, nt as f64)
+                } else {
+                    0.0
+                };
+                let t0 = (c as usize).min(nt - 1);
+                let t1 = if t0 + 1 == nt { 0 } else { t0 + 1 };
+                (t0, t1, (c - t0 as f64).clamp(0.0, 1.0) as f32)
+            }
+            _ => (0, 0, 0.0),
+        };
+        let pulse = if self.config.pulse.is_active() {
+            self.config.pulse.factor(time)
+        } else {
+            1.0
+        };
+        Moment {
+            time,
+            shift: (shift(travel.x, nx), shift(travel.y, nz)),
+            slice,
+            pulse,
+        }
+    }
+
+    /// The wind at `L::WIDTH` points given in lanes at `moment` (from [`Self::moment`]): what
+    /// a fall store reads for a block.
+    pub(crate) fn velocity_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>) -> V3<L> {
+        self.read_lanes(moment, points)
     }
 
     fn read_many(&self, positions: &[Vec3], time: f64, out: &mut Vec<Vec3>) {
+        let moment = self.moment(time);
         out.clear();
         out.reserve(positions.len());
         let mut quads = positions.chunks_exact(4);
         for quad in &mut quads {
-            let v = self.sample_lanes::<f32x4>(quad, time);
+            let lane = |axis: usize| f32x4::from(std::array::from_fn(|k| quad[k][axis]));
+            let v = self.read_lanes(&moment, V3::new(lane(0), lane(1), lane(2)));
             out.extend((0..4).map(|k| Vec3::new(v.x.get(k), v.y.get(k), v.z.get(k))));
         }
-        out.extend(quads.remainder().iter().map(|&p| self.sample(p, time)));
+        out.extend(
+            quads
+                .remainder()
+                .iter()
+                .map(|&p| self.read_lanes(&moment, V3::of(p)).vec3()),
+        );
     }
 
     /// The global field, calmed by every shelter.
@@ -76,26 +125,26 @@ impl WindField {
 
     /// The global field (sheltered) plus every local source.
     fn sample(&self, position: Vec3, time: f64) -> Vec3 {
-        let v = self.sample_lanes::<f32>(&[position], time);
-        Vec3::new(v.x, v.y, v.z)
+        self.read_lanes(&self.moment(time), V3::of(position)).vec3()
     }
 
     /// The global field (sheltered) plus every local source at `L::WIDTH` points: the lanes
     /// take the log law, the interpolation and the mean wind; shelters and sources are added
     /// point by point.
-    fn sample_lanes<L: Lane>(&self, points: &[Vec3], time: f64) -> V3<L> {
-        let global = self.global_lanes::<L>(points, time);
+    fn read_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>) -> V3<L> {
+        let global = self.global_lanes::<L>(moment, points);
         if self.shelters.is_empty() && self.sources.is_empty() {
             return global;
         }
-        let local_time = if time.is_finite() { time } else { self.time };
+        let local_time = moment.time;
         let each = |k: usize| {
             let g = Vec3::new(global.x.get(k), global.y.get(k), global.z.get(k));
-            let g = self.shelter(points[k], g);
+            let point = Vec3::new(points.x.get(k), points.y.get(k), points.z.get(k));
+            let g = self.shelter(point, g);
             if self.sources.is_empty() {
                 return g;
             }
-            let p = points[k].into();
+            let p = point.into();
             let local = self
                 .sources
                 .iter()
@@ -113,15 +162,16 @@ impl WindField {
 
     /// The log-law mean wind plus turbulence (no sources).
     fn global(&self, position: Vec3, time: f64) -> Vec3 {
-        let v = self.global_lanes::<f32>(&[position], time);
-        Vec3::new(v.x, v.y, v.z)
+        self.global_lanes(&self.moment(time), V3::of(position))
+            .vec3()
     }
 
     /// The log-law mean wind plus turbulence (no shelters or sources) at `L::WIDTH` points.
-    fn global_lanes<L: Lane>(&self, points: &[Vec3], time: f64) -> V3<L> {
+    fn global_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>) -> V3<L> {
         let c = &self.config;
+        let time = moment.time;
         // max(0, ln(h/z0)): the read's one logarithm.
-        let h = L::from_fn(|k| points[k].y);
+        let h = points.y;
         let above = h.gt(L::splat(c.roughness));
         let height = L::select(h.lt(L::splat(f32::MAX)), h, L::splat(f32::MAX));
         let ratio = profile::ln_lanes(height) - L::splat(self.log_roughness);
@@ -131,41 +181,19 @@ impl WindField {
         let g = log_ratio * L::splat(self.inv_log_reference); // eq. 14
         let reference = L::splat(c.reference_speed);
         let mean = reference * g;
-        // `travel`: how the pattern's travel at this height compares with the reference's.
-        let (scale, advection, travel) = match c.spatial {
-            SpatialMode::Plane => (g, reference, L::splat(1.0)),
+        let (n, scale) = match c.spatial {
+            // One plane carried to every height (eq. 14): the pattern travels the same
+            // everywhere, so its travel is reduced to the plane's period once and the rest is
+            // single precision in lanes.
+            SpatialMode::Plane => (self.plane_lanes(moment, points), g),
             SpatialMode::Volume { .. } => {
                 let one = L::splat(1.0);
-                (L::select(g.lt(one), g, one), mean, g) // mean = (u*/κ) ln(h/z0), eq. 10
+                // The pattern travels at the local mean wind (eq. 10): per point, in f64.
+                (
+                    self.volume_lanes(points, time, mean, g),
+                    L::select(g.lt(one), g, one),
+                )
             }
-        };
-        let time = if time.is_finite() { time } else { 0.0 };
-        // Taylor's hypothesis: the pattern translates with the mean wind, by ∫ U dt (the travel
-        // booked before the last change of speed or direction, plus U × the time since).
-        let coordinates = |k: usize| {
-            let shift = f64::from(advection.get(k)) * (time - self.drift_since);
-            let base = self.drift_base * f64::from(travel.get(k));
-            let p = points[k];
-            let x = (f64::from(p.x) - (base.x + f64::from(self.along.x) * shift)) * self.per_cell;
-            let z = (f64::from(p.z) - (base.y + f64::from(self.along.z) * shift)) * self.per_cell;
-            (x, z)
-        };
-        let n = if self.shape.dims().len() == 2 {
-            self.plane_lanes::<L>(&coordinates)
-        } else {
-            let noise: [Vec3; 4] = std::array::from_fn(|k| {
-                if k < L::WIDTH {
-                    let (x, z) = coordinates(k);
-                    self.sample_nd(points[k], time, x, z)
-                } else {
-                    Vec3::ZERO
-                }
-            });
-            V3::new(
-                L::from_fn(|k| noise[k].x),
-                L::from_fn(|k| noise[k].y),
-                L::from_fn(|k| noise[k].z),
-            )
         };
         let sigma = self.sigma();
         let n = V3::new(
@@ -181,36 +209,68 @@ impl WindField {
             (L::splat(along.z) * u + L::splat(across.z) * n.y) + L::splat(0.0) * n.z,
         );
         if c.pulse.is_active() {
-            wind.scale(L::splat(c.pulse.factor(time)))
+            wind.scale(L::splat(moment.pulse))
         } else {
             wind
         }
     }
 
-    /// The turbulence of a 2-D grid at each lane's node coordinates: the periodic wraps and the
-    /// four nodes point by point, the bilinear weights in lanes.
-    fn plane_lanes<L: Lane>(&self, coordinates: &dyn Fn(usize) -> (f64, f64)) -> V3<L> {
+    /// The turbulence of a plane (frozen: a 2-D grid; evolving: 3-D, time first) at each
+    /// lane's point: Taylor's travel ∫ U dt reduced to the grid's period in f64 once, then the
+    /// node coordinates, branch-free floors and periodic wraps and the bilinear (trilinear in
+    /// time) weights in f32 lanes; only the node loads go lane by lane.
+    fn plane_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>) -> V3<L> {
         let dims = self.shape.dims();
-        let corners: [([usize; 4], f32, f32); 4] = std::array::from_fn(|k| {
-            if k >= L::WIDTH {
-                return ([0; 4], 0.0, 0.0);
-            }
-            let (x, z) = coordinates(k);
-            let (i0, i1, fx) = wrap(x, dims[0]);
-            let (j0, j1, fy) = wrap(z, dims[1]);
-            let (r0, r1) = (i0 * dims[1], i1 * dims[1]);
-            ([r0 + j0, r0 + j1, r1 + j0, r1 + j1], fx, fy)
-        });
-        let node = |corner: usize| {
-            let v = |axis: usize| L::from_fn(|k| self.nodes[corners[k].0[corner]][axis]);
-            V3::new(v(0), v(1), v(2))
+        let (nx, nz) = match *dims {
+            [_, nx, nz] | [nx, nz] => (nx, nz),
+            _ => return V3::splat(Vec3::ZERO),
         };
-        let fx = L::from_fn(|k| corners[k].1);
-        let fy = L::from_fn(|k| corners[k].2);
-        let (gx, gy) = (L::splat(1.0) - fx, L::splat(1.0) - fy);
-        let low = node(0).scale(gy).add(node(1).scale(fy));
-        let high = node(2).scale(gy).add(node(3).scale(fy));
-        low.scale(gx).add(high.scale(fx))
+        let per_cell = L::splat(self.per_cell as f32);
+        let x = (points.x - L::splat(moment.shift.0)) * per_cell;
+        let z = (points.z - L::splat(moment.shift.1)) * per_cell;
+        let (i0, i1, fx) = wrap_lanes(x, nx);
+        let (j0, j1, fz) = wrap_lanes(z, nz);
+        let slice = |t: usize| {
+            let node = |i: &[usize; 4], j: &[usize; 4]| {
+                let [a, b, c, _] = L::columns(|k| {
+                    let v = self.nodes[(t * nx + i[k]) * nz + j[k]];
+                    [v.x, v.y, v.z, 0.0]
+                });
+                V3::new(a, b, c)
+            };
+            let (gx, gz) = (L::splat(1.0) - fx, L::splat(1.0) - fz);
+            let low = node(&i0, &j0).scale(gz).add(node(&i0, &j1).scale(fz));
+            let high = node(&i1, &j0).scale(gz).add(node(&i1, &j1).scale(fz));
+            low.scale(gx).add(high.scale(fx))
+        };
+        let (t0, t1, ft) = moment.slice;
+        if t0 == t1 {
+            return slice(t0);
+        }
+        let ft = L::splat(ft);
+        slice(t0).scale(L::splat(1.0) - ft).add(slice(t1).scale(ft))
+    }
+
+    /// The turbulence of a volume at each lane's point (the pattern's travel scaled by each
+    /// height's log-law ratio `travel`, advected at its mean speed `mean`): point by point, in
+    /// f64 coordinates.
+    fn volume_lanes<L: Lane>(&self, points: V3<L>, time: f64, mean: L, travel: L) -> V3<L> {
+        let noise: [Vec3; 4] = std::array::from_fn(|k| {
+            if k >= L::WIDTH {
+                return Vec3::ZERO;
+            }
+            let shift = f64::from(mean.get(k)) * (time - self.drift_since);
+            let base = self.drift_base * f64::from(travel.get(k));
+            let p = Vec3::new(points.x.get(k), points.y.get(k), points.z.get(k));
+            let x = (f64::from(p.x) - (base.x + f64::from(self.along.x) * shift)) * self.per_cell;
+            let z = (f64::from(p.z) - (base.y + f64::from(self.along.z) * shift)) * self.per_cell;
+            self.sample_nd(p, time, x, z)
+        });
+        V3::new(
+            L::from_fn(|k| noise[k].x),
+            L::from_fn(|k| noise[k].y),
+            L::from_fn(|k| noise[k].z),
+        )
     }
 
     /// The turbulence read on a 3- or 4-D grid.
@@ -232,4 +292,32 @@ impl WindField {
         coords[axes] = z;
         periodic_lerp(&self.shape, &self.nodes, &coords[..self.shape.dims().len()])
     }
+}
+
+/// A grid coordinate `c` in lanes wrapped onto an axis of `n` nodes: the node below and the
+/// next (periodic), and the weight of the next. Branch-free: c − n ⌊c / n⌋ with the portable
+/// floor, held to [0, n) against rounding; a non-finite coordinate reads node 0.
+fn wrap_lanes<L: Lane>(c: L, n: usize) -> ([usize; 4], [usize; 4], L) {
+    let len = L::splat(n as f32);
+    let w = c - len * floor(c * L::splat(1.0 / n as f32));
+    let w = L::select(w.lt(L::splat(0.0)), w + len, w);
+    let w = L::select(w.ge(len), w - len, w);
+    let finite = L::and(w.ge(L::splat(0.0)), w.lt(len));
+    let w = L::select(finite, w, L::splat(0.0));
+    let i = floor(w);
+    let f = clamp(w - i, L::splat(0.0), L::splat(1.0));
+    let below = L::to_i32s(i).map(|i| (i.max(0) as usize).min(n - 1));
+    let above = below.map(|i| if i + 1 == n { 0 } else { i + 1 });
+    (below, above, f)
+}
+
+/// What every read of a field at one time shares: the time, the plane pattern's travel
+/// reduced to its period (m; single precision from here on), the evolving grid's two time
+/// slices and the weight of the second, the pulse's factor.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Moment {
+    time: f64,
+    shift: (f32, f32),
+    slice: (usize, usize, f32),
+    pulse: f32,
 }

@@ -6,7 +6,12 @@ use super::Feature;
 
 /// The feature vector as the search compares it: the glide on a log scale.
 pub(super) fn search_space(f: &Feature) -> Feature {
-    [libm::logf(f[0].abs().max(1e-3)), f[1], f[2], f[3]]
+    [
+        crate::math::kernels::ln(f[0].abs().max(1e-3)),
+        f[1],
+        f[2],
+        f[3],
+    ]
 }
 
 /// 1 / standard deviation of each component over `features` (0 where it is constant), the

@@ -103,6 +103,15 @@ impl Default for DatabaseConfig {
 /// Members of the nearest cluster the search picks from at random.
 pub(crate) const CANDIDATES: usize = 4;
 
+/// The candidates of a fall's last search and the key (its bits) they were found for.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct SearchMemo {
+    key: [u32; 4],
+    candidates: [u32; CANDIDATES],
+    /// How many candidates (0: none remembered).
+    found: u8,
+}
+
 /// Segments, their k-means clusters, and the lookup the search tree uses.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TrajectoryDatabase {
@@ -341,7 +350,32 @@ impl TrajectoryDatabase {
 
     /// The search tree's child for `key`: one of the [`CANDIDATES`] members of the nearest
     /// cluster that are nearest to the key, at random.
+    #[cfg(test)]
     pub(crate) fn find(&self, key: &Feature, rng: &mut FallRng) -> u32 {
+        self.find_remembered(key, rng, &mut SearchMemo::default())
+    }
+
+    /// [`Self::find`], remembering the candidates of the last key in `memo`: a fall that asks
+    /// again with the same key (a tumble's half-turns, each the same glide) only draws among
+    /// them.
+    pub(crate) fn find_remembered(
+        &self,
+        key: &Feature,
+        rng: &mut FallRng,
+        memo: &mut SearchMemo,
+    ) -> u32 {
+        let bits = key.map(f32::to_bits);
+        if memo.found == 0 || memo.key != bits {
+            *memo = self.candidates(key);
+            memo.key = bits;
+        }
+        let found = usize::from(memo.found);
+        let pick = ((rng.uniform() * found as f32) as usize).min(found - 1);
+        memo.candidates[pick]
+    }
+
+    /// The [`CANDIDATES`] members of the nearest cluster nearest to `key`.
+    fn candidates(&self, key: &Feature) -> SearchMemo {
         let scaled = self.scaled_key(key);
         let members = &self.members[self.nearest_to_scaled(&scaled)];
         let mut best = [(u32::MAX, f32::INFINITY); CANDIDATES];
@@ -352,13 +386,16 @@ impl TrajectoryDatabase {
                 best[slot] = (m, d);
             }
         }
-        let found = best.iter().filter(|b| b.0 != u32::MAX).count().max(1);
-        let pick = ((rng.uniform() * found as f32) as usize).min(found - 1);
-        if best[pick].0 == u32::MAX {
-            members[0]
-        } else {
-            best[pick].0
+        let found = best.iter().filter(|b| b.0 != u32::MAX).count();
+        let mut memo = SearchMemo {
+            candidates: best.map(|b| b.0),
+            found: found.max(1) as u8,
+            key: [0; 4],
+        };
+        if found == 0 {
+            memo.candidates[0] = members[0];
         }
+        memo
     }
 
     fn scaled_key(&self, key: &Feature) -> Feature {

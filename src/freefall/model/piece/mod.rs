@@ -122,7 +122,7 @@ impl Piece {
             0.0
         };
         // The half-turn the plate is in, and where the swing ends.
-        let base = PI * (theta / PI).round();
+        let base = PI * crate::math::kernels::round(theta / PI);
         let (tumble, end) = if choice.same_side {
             let survival = choice.survival.clamp(0.0, 1.0);
             let full = base + sign * (PI + range) - theta;

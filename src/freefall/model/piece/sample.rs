@@ -188,9 +188,7 @@ pub(crate) fn swing_sample<L: Lane>(
     let u = clamp(s, L::splat(0.0), L::splat(1.0));
     let x = u * L::splat(last);
     // The sample below x (NaN: the first), and the rows of it and the next, one load a lane.
-    let index: [usize; 4] = std::array::from_fn(|k| {
-        (x.get(k.min(L::WIDTH - 1)) as i32).clamp(0, last as i32 - 1) as usize
-    });
+    let index = L::to_i32s(x).map(|i| i.clamp(0, last as i32 - 1) as usize);
     let i = L::from_fn(|k| index[k] as f32);
     let base = |k: usize| rows[k] as usize + index[k];
     let [x0, y0, a0, b0] = L::columns(|k| db.row(base(k)));
