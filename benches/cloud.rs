@@ -62,9 +62,9 @@ fn step<'a>(model: &'a FallModel, wind: &'a WindField, focus: Option<Focus>) -> 
 
 /// The baseline: explicit drag particles, chunked on the same pool, each chunk reading the
 /// wind with the crate's batched read (`velocities_at`, four points at a time in SIMD lanes).
-fn drag_particles(mut particles: &mut [(Vec3, Vec3)], wind: &WindField, pool: &TaskPool) {
+fn drag_particles(mut particles: &mut [(Vec3, Vec3)], wind: &WindField, pool: Option<&TaskPool>) {
     let c = 0.5 * 1.2 * 1.2 * 2.4e-3 / 3.6e-4; // ½ ρ C_D A / m for the default leaf
-    particles.par_chunk_map_mut(pool, CloudLeaves::CHUNK, |_, chunk| {
+    let step = |chunk: &mut [(Vec3, Vec3)]| {
         let positions: Vec<Vec3> = chunk.iter().map(|(x, _)| *x).collect();
         let mut winds = Vec::with_capacity(chunk.len());
         wind.velocities_at(&positions, wind.time(), &mut winds);
@@ -73,7 +73,13 @@ fn drag_particles(mut particles: &mut [(Vec3, Vec3)], wind: &WindField, pool: &T
             *v += (Vec3::new(0.0, -9.81, 0.0) + c * relative.length() * relative) * DT;
             *x += *v * DT;
         }
-    });
+    };
+    match pool {
+        Some(pool) => {
+            particles.par_chunk_map_mut(pool, CloudLeaves::CHUNK, |_, chunk| step(chunk));
+        }
+        None => particles.chunks_mut(CloudLeaves::CHUNK).for_each(step),
+    }
 }
 
 fn cloud(c: &mut Criterion) {
@@ -102,7 +108,36 @@ fn cloud(c: &mut Criterion) {
     group.bench_function("baseline_drag_particles_with_wind", |b| {
         b.iter_batched_ref(
             || particles.clone(),
-            |p| drag_particles(p, &wind, &pool),
+            |p| drag_particles(p, &wind, Some(&pool)),
+            BatchSize::LargeInput,
+        )
+    });
+    // One thread (no pool): a leaf-step's cost in ns is the time / 100 000; in still air (no
+    // wind read), the synthesis alone.
+    group.bench_function("leaf_cloud_with_wind_one_thread", |b| {
+        b.iter_batched_ref(
+            || full.clone(),
+            |leaves| leaves.step(&step(&model, &wind, None), None),
+            BatchSize::LargeInput,
+        )
+    });
+    group.bench_function("leaf_cloud_still_air_one_thread", |b| {
+        b.iter_batched_ref(
+            || full.clone(),
+            |leaves| {
+                let still = CloudStep {
+                    wind: None,
+                    ..step(&model, &wind, None)
+                };
+                leaves.step(&still, None)
+            },
+            BatchSize::LargeInput,
+        )
+    });
+    group.bench_function("baseline_drag_particles_with_wind_one_thread", |b| {
+        b.iter_batched_ref(
+            || particles.clone(),
+            |p| drag_particles(p, &wind, None),
             BatchSize::LargeInput,
         )
     });

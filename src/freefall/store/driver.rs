@@ -15,8 +15,8 @@ use bevy::math::Vec3;
 use bevy::tasks::TaskPool;
 use wide::f32x4;
 
-/// The lanes of a block.
-type L1 = f32x4;
+/// A block's lanes.
+type Lanes = f32x4;
 
 use super::block::{Block, Cold, Constants, W};
 use super::kernel;
@@ -261,10 +261,10 @@ fn step_block<K: Constants>(
     // next step on that tier, or the step just taken if longer.
     let Some(focus) = step.focus else {
         // No focus: every fall at full detail, every step.
-        let next = L1::splat(clock.last_dt);
-        let waited = L1::from(waited);
-        L1::select(next.gt(waited), next, waited).store_where(
-            L1::mask_from_fn(|j| j < live),
+        let next = Lanes::splat(clock.last_dt);
+        let waited = Lanes::from(waited);
+        Lanes::select(next.gt(waited), next, waited).store_where(
+            Lanes::mask_from_fn(|j| j < live),
             &mut block.hot.span,
             0,
         );
@@ -308,7 +308,7 @@ fn step_lanes<K: Constants>(
     outcomes: &mut [StepOutcome; W],
     alone: &mut [bool; W],
 ) {
-    type L = f32x4;
+    type L = Lanes;
     let live = cold.len();
     let db = step.model.database();
     let wind = air_lanes::<L, K>(block, 0, air);

@@ -591,7 +591,10 @@ impl Cold {
             let segment = db.find_remembered(&key, &mut self.rng, &mut self.search);
             return Piece::swing(db, &self.scales, segment, choice);
         }
+        // The plate's half-turns, less whole turns of the half angle (4π: the same quaternion).
+        let turns = 4.0 * PI;
         let flip = PI * crate::math::kernels::round(theta / PI);
+        let flip = flip - turns * crate::math::kernels::round(flip / turns);
         match old {
             // The same curve carries on from where it was.
             Some(Piece::Curve {

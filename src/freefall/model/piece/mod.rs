@@ -116,8 +116,11 @@ impl Piece {
         let unit = scales.descent_speed / scales.swing_rate;
         let range = db.segment(segment).angle_range;
         let sign = choice.glide.sign();
+        // The start angle less whole turns of the half angle (4π: the same quaternion), so a
+        // tumbling plate's angle stays a bounded argument however many half-turns it made.
         let theta = if choice.theta.is_finite() {
-            choice.theta
+            let turns = 2.0 * std::f32::consts::TAU;
+            choice.theta - turns * crate::math::kernels::round(choice.theta / turns)
         } else {
             0.0
         };
@@ -136,7 +139,7 @@ impl Piece {
                 theta + (base + sign * range - theta).clamp(-most, most),
             )
         };
-        let (sin, cos) = sin_cos(0.5 * theta);
+        let (sin, cos) = crate::math::kernels::sin_cos_bounded(0.5 * theta);
         let sideways = if tumble { choice.survival } else { 1.0 };
         let swings = choice.swings(tumble);
         let duration = (swings * scales.swing_time()).max(MIN_PIECE);
