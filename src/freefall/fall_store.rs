@@ -8,7 +8,7 @@ use super::model::FallModel;
 use super::store::Store;
 use super::store::block::{Constants, FallConstants, PerFall};
 use super::store::pose::LeafPose;
-use super::store::slot::FallStart;
+use super::store::release::FallStart;
 use super::store::view::FallView;
 use crate::lod::LodTiers;
 

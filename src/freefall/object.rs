@@ -21,7 +21,7 @@ use super::model::regime::{PrimitiveMotion, Regime};
 use super::model::release::FallRelease;
 use super::presets::FallPreset;
 use super::store::path::FallPath;
-use super::store::slot::FallStart;
+use super::store::release::FallStart;
 use crate::error::InvalidValue;
 use crate::lifecycle::Described;
 

@@ -13,10 +13,11 @@ use crate::freefall::model::{
     FallModel, markov::BoundedChain, motion::FallScales, random::FallRng, release::FallRelease,
 };
 use crate::freefall::store::Store;
+use crate::freefall::store::air::Air;
 use crate::freefall::store::block::{FallConstants, Shared};
-use crate::freefall::store::driver::{Air, Step};
+use crate::freefall::store::driver::Step;
 use crate::freefall::store::path::FallPath;
-use crate::freefall::store::slot::FallStart;
+use crate::freefall::store::release::FallStart;
 use crate::freefall::store::view::FallView;
 use crate::lod::{Focus, LodTiers};
 use crate::math::geometry::{Q, V3};

@@ -94,7 +94,8 @@ impl FallRelease {
     /// Largest speed, m/s, a fall may be released with (and the largest wind it feels).
     pub const MAX_SPEED: f32 = 1.0e4;
 
-    /// Longest step [`FallPath::advance`](super::path::FallPath::advance) takes, s; a longer one is cut to it.
+    /// Longest step [`FallPath::advance`](crate::freefall::FallPath::advance) takes, s; a
+    /// longer one is cut to it.
     pub const MAX_STEP: f32 = 60.0;
 }
 

@@ -18,6 +18,7 @@ use wide::f32x4;
 /// A block's lanes.
 type Lanes = f32x4;
 
+use super::air::{Air, Reading};
 use super::block::{Block, Cold, Constants, W};
 use super::kernel;
 use super::slot::{Part, Slot, StepOutcome};
@@ -28,19 +29,6 @@ use crate::freefall::model::release::FallRelease;
 use crate::lod::Focus;
 use crate::math::geometry::{Q, V3};
 use crate::math::lane::Lane;
-use crate::wind::Moment;
-use crate::wind::WindField;
-
-/// The air the falls move in.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum Air<'a> {
-    /// Still air.
-    Still,
-    /// The wind field, read where each fall is at its own clock.
-    Field(&'a WindField),
-    /// The same velocity everywhere, m/s.
-    Uniform(Vec3),
-}
 
 /// Everything one step reads.
 #[derive(Clone, Copy, Debug)]
@@ -99,14 +87,7 @@ impl<K: Constants> Store<K> {
         let clock = self.clock;
         let kind = &self.kind;
         // What every read of the wind on this step shares, taken once.
-        let air = match step.air {
-            Air::Field(field) => Reading::Field(field, field.moment(field.time_f64())),
-            Air::Uniform(u) => {
-                Reading::Uniform(clamp_speed(V3::of(u), FallRelease::MAX_SPEED).vec3())
-            }
-            Air::Still => Reading::Still,
-        };
-        let air = &air;
+        let air = &Reading::of(step.air);
         let mut reports = Vec::new();
         let due = due_bands(clock.steps);
         for (b, band) in self.bands.iter_mut().enumerate() {
@@ -222,7 +203,7 @@ fn step_block<K: Constants>(
         );
     } else {
         for (j, cold) in cold.iter_mut().enumerate() {
-            let wind = air_lanes::<f32, K>(block, j, air).vec3();
+            let wind = air.lanes::<f32, K>(block, j).vec3();
             let mut slot = Slot { block, k: j, cold };
             let before = slot.easing_before(clock, waited[j]);
             outcomes[j] = slot.advance(kind, step.model, waited[j], wind, step.reference_speed);
@@ -311,7 +292,7 @@ fn step_lanes<K: Constants>(
     type L = Lanes;
     let live = cold.len();
     let db = step.model.database();
-    let wind = air_lanes::<L, K>(block, 0, air);
+    let wind = air.lanes::<L, K>(block, 0);
     let c = kind.load::<L>(&block.consts, 0);
     let half = L::splat(0.5);
     let dt = L::from(*waited);
@@ -422,50 +403,4 @@ fn step_lanes<K: Constants>(
             Slot { block, k: j, cold }.easing_after(before, clock);
         }
     }
-}
-
-/// The air of one step, with what its reads share.
-enum Reading<'a> {
-    Still,
-    Field(&'a WindField, Moment),
-    /// Already held to [`FallRelease::MAX_SPEED`].
-    Uniform(Vec3),
-}
-
-/// The air's velocity at lanes `k..` of `block` (where each fall is), held to
-/// [`FallRelease::MAX_SPEED`].
-fn air_lanes<L: Lane, K: Constants>(block: &Block<K>, k: usize, air: &Reading) -> V3<L> {
-    let h = &block.hot;
-    match air {
-        Reading::Still => V3::splat(Vec3::ZERO),
-        Reading::Uniform(u) => V3::splat(*u),
-        Reading::Field(field, moment) => {
-            let p = V3::new(L::load(&h.p2x, k), L::load(&h.p2y, k), L::load(&h.p2z, k));
-            clamp_speed(field.velocity_lanes(moment, p), FallRelease::MAX_SPEED)
-        }
-    }
-}
-
-/// `v` held to `max` long (a non-finite vector: zero), lane by lane: the usual case with no
-/// division, the rest one lane at a time (overflow-safe).
-fn clamp_speed<L: Lane>(v: V3<L>, max: f32) -> V3<L> {
-    let squared = v.length_squared();
-    let ok = L::and(squared.gt(L::splat(0.0)), squared.le(L::splat(max * max)));
-    let zero = squared.eq(L::splat(0.0));
-    if L::all(L::or(ok, zero)) {
-        return v;
-    }
-    let each = |j: usize| {
-        if L::mask_get(ok, j) {
-            Vec3::new(v.x.get(j), v.y.get(j), v.z.get(j))
-        } else {
-            crate::guard::clamp_length(Vec3::new(v.x.get(j), v.y.get(j), v.z.get(j)), max)
-        }
-    };
-    let lanes: [Vec3; 4] = std::array::from_fn(|j| if j < L::WIDTH { each(j) } else { Vec3::ZERO });
-    V3::new(
-        L::from_fn(|j| lanes[j].x),
-        L::from_fn(|j| lanes[j].y),
-        L::from_fn(|j| lanes[j].z),
-    )
 }

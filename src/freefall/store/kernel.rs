@@ -274,10 +274,10 @@ fn write<L: Lane>(
 }
 
 /// Whether `wind` lifts a resting fall of descent speed `u` again: faster than
-/// [`FallRelease::LIFT_OFF_FACTOR`](crate::freefall::FallRelease::LIFT_OFF_FACTOR) × U.
+/// [`FallRelease::LIFT_OFF_FACTOR`](crate::freefall::model::release::FallRelease::LIFT_OFF_FACTOR) × U.
 #[inline]
 pub(crate) fn lifts<L: Lane>(wind: V3<L>, u: L) -> L::Mask {
-    let least = L::splat(crate::freefall::FallRelease::LIFT_OFF_FACTOR) * u;
+    let least = L::splat(crate::freefall::model::release::FallRelease::LIFT_OFF_FACTOR) * u;
     wind.length_squared().gt(least * least)
 }
 

@@ -22,11 +22,14 @@
 //! another lane, block, band, thread or store enters its arithmetic, which is plain IEEE-754 in
 //! a fixed order (`crate::math`). Which band, block or lane it sits in changes no bit.
 
+pub(crate) mod air;
 pub(crate) mod block;
 pub(crate) mod driver;
 pub(crate) mod kernel;
 pub(crate) mod path;
+pub(crate) mod piece;
 pub(crate) mod pose;
+pub(crate) mod release;
 pub(crate) mod slot;
 pub(crate) mod view;
 
@@ -34,7 +37,8 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use self::block::{Block, Cold, Constants, W};
-use self::slot::{FallStart, Slot, blank_cold};
+use self::release::{FallStart, blank_cold};
+use self::slot::Slot;
 use crate::freefall::lod::FallClock;
 use crate::freefall::model::FallModel;
 

@@ -6,9 +6,11 @@ use std::sync::Arc;
 use bevy::math::{Quat, Vec3};
 
 use super::Store;
+use super::air::Air;
 use super::block::{FallConstants, Shared};
-use super::driver::{Air, Step};
-use super::slot::{FallStart, StepOutcome};
+use super::driver::Step;
+use super::release::FallStart;
+use super::slot::StepOutcome;
 use super::view::FallView;
 use crate::freefall::model::FallModel;
 use crate::freefall::model::error::FallError;

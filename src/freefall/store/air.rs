@@ -1,0 +1,80 @@
+//! The air a store's falls move in, and one step's read of it: the wind field's moment taken
+//! once, then read where each block's falls are, in lanes.
+
+use bevy::math::Vec3;
+
+use super::block::{Block, Constants};
+use crate::freefall::model::release::FallRelease;
+use crate::math::geometry::V3;
+use crate::math::lane::Lane;
+use crate::wind::{Moment, WindField};
+
+/// The air the falls move in.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Air<'a> {
+    /// Still air.
+    Still,
+    /// The wind field, read where each fall is at its own clock.
+    Field(&'a WindField),
+    /// The same velocity everywhere, m/s.
+    Uniform(Vec3),
+}
+
+/// The air of one step, with what its reads share.
+pub(super) enum Reading<'a> {
+    Still,
+    Field(&'a WindField, Moment),
+    /// Already held to [`FallRelease::MAX_SPEED`].
+    Uniform(Vec3),
+}
+
+impl<'a> Reading<'a> {
+    /// What every read of the wind on a step shares, taken once.
+    pub(super) fn of(air: Air<'a>) -> Self {
+        match air {
+            Air::Field(field) => Reading::Field(field, field.moment(field.time_f64())),
+            Air::Uniform(u) => {
+                Reading::Uniform(clamp_speed(V3::of(u), FallRelease::MAX_SPEED).vec3())
+            }
+            Air::Still => Reading::Still,
+        }
+    }
+
+    /// The air's velocity at lanes `k..` of `block` (where each fall is), held to
+    /// [`FallRelease::MAX_SPEED`].
+    pub(super) fn lanes<L: Lane, K: Constants>(&self, block: &Block<K>, k: usize) -> V3<L> {
+        let h = &block.hot;
+        match self {
+            Reading::Still => V3::splat(Vec3::ZERO),
+            Reading::Uniform(u) => V3::splat(*u),
+            Reading::Field(field, moment) => {
+                let p = V3::new(L::load(&h.p2x, k), L::load(&h.p2y, k), L::load(&h.p2z, k));
+                clamp_speed(field.velocity_lanes(moment, p), FallRelease::MAX_SPEED)
+            }
+        }
+    }
+}
+
+/// `v` held to `max` long (a non-finite vector: zero), lane by lane: the usual case with no
+/// division, the rest one lane at a time (overflow-safe).
+fn clamp_speed<L: Lane>(v: V3<L>, max: f32) -> V3<L> {
+    let squared = v.length_squared();
+    let ok = L::and(squared.gt(L::splat(0.0)), squared.le(L::splat(max * max)));
+    let zero = squared.eq(L::splat(0.0));
+    if L::all(L::or(ok, zero)) {
+        return v;
+    }
+    let each = |j: usize| {
+        if L::mask_get(ok, j) {
+            Vec3::new(v.x.get(j), v.y.get(j), v.z.get(j))
+        } else {
+            crate::guard::clamp_length(Vec3::new(v.x.get(j), v.y.get(j), v.z.get(j)), max)
+        }
+    };
+    let lanes: [Vec3; 4] = std::array::from_fn(|j| if j < L::WIDTH { each(j) } else { Vec3::ZERO });
+    V3::new(
+        L::from_fn(|j| lanes[j].x),
+        L::from_fn(|j| lanes[j].y),
+        L::from_fn(|j| lanes[j].z),
+    )
+}
