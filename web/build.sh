@@ -9,7 +9,10 @@
 # version in Cargo.lock, about 2 minutes once) and wasm-opt (binaryen from npm, which runs on
 # Node.js; Debian's binaryen 108 is too old for wasm-bindgen's output). The first build takes
 # 20-30 minutes on two cores; the profile `web` (Cargo.toml) optimises for size with LTO.
+# WINDFALL_WEB_PROFILE=web-ci builds the same showcase faster and larger, without wasm-opt (CI's
+# browser checks).
 set -eu
+profile=${WINDFALL_WEB_PROFILE:-web}
 backend=${1:-webgl2}
 case "$backend" in
 webgl2 | webgpu) ;;
@@ -49,33 +52,38 @@ fi
 # WebAssembly SIMD (simd128) for the leaves' lane step: every current browser has it.
 export CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS="${CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS:-} -C target-feature=+simd128"
 features="render,egui,bevy/web,bevy/$backend"
-cargo build --locked --profile web --target wasm32-unknown-unknown --example showcase \
+cargo build --locked --profile "$profile" --target wasm32-unknown-unknown --example showcase \
     --features "$features"
 target=${CARGO_TARGET_DIR:-target}
 out=target/web/$backend
 rm -rf "$out"
 mkdir -p "$out"
 wasm-bindgen --no-typescript --target web --out-dir "$out" --out-name showcase \
-    "$target/wasm32-unknown-unknown/web/examples/showcase.wasm"
+    "$target/wasm32-unknown-unknown/$profile/examples/showcase.wasm"
 before=$(wc -c <"$out/showcase_bg.wasm")
 # The features Rust's wasm32 target uses by default, and SIMD.
-"$wasm_opt" -Oz --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
-    --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd \
-    "$out/showcase_bg.wasm" -o "$out/opt.wasm"
-mv "$out/opt.wasm" "$out/showcase_bg.wasm"
+if [ "$profile" = web ]; then
+    "$wasm_opt" -Oz --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
+        --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd \
+        "$out/showcase_bg.wasm" -o "$out/opt.wasm"
+    mv "$out/opt.wasm" "$out/showcase_bg.wasm"
+fi
 bytes=$(wc -c <"$out/showcase_bg.wasm")
 sed "s/__WASM_BYTES__/$bytes/" web/index.html >"$out/index.html"
 # Compressed copies beside the originals: web/serve.py sends the smallest the browser takes
-# (brotli by Node.js's zlib, at its best quality; gzip everywhere).
-for file in showcase_bg.wasm showcase.js; do
-    gzip -9 -k -f "$out/$file"
-    node -e 'const z = require("zlib"), fs = require("fs"), f = process.argv[1];
-        fs.writeFileSync(f + ".br", z.brotliCompressSync(fs.readFileSync(f), { params: {
-            [z.constants.BROTLI_PARAM_QUALITY]: 11, [z.constants.BROTLI_PARAM_LGWIN]: 24 } }));' \
-        "$out/$file"
-done
-gz=$(wc -c <"$out/showcase_bg.wasm.gz")
-br=$(wc -c <"$out/showcase_bg.wasm.br")
-echo "showcase_bg.wasm: $bytes bytes ($before before wasm-opt), $gz gzipped, $br brotli;" \
-    "built in $(($(date +%s) - started)) s"
+# (brotli by Node.js's zlib, at its best quality; gzip everywhere). Not for CI's build.
+if [ "$profile" = web ]; then
+    for file in showcase_bg.wasm showcase.js; do
+        gzip -9 -k -f "$out/$file"
+        node -e 'const z = require("zlib"), fs = require("fs"), f = process.argv[1];
+            fs.writeFileSync(f + ".br", z.brotliCompressSync(fs.readFileSync(f), { params: {
+                [z.constants.BROTLI_PARAM_QUALITY]: 11, [z.constants.BROTLI_PARAM_LGWIN]: 24 } }));' \
+            "$out/$file"
+    done
+    echo "showcase_bg.wasm: $bytes bytes ($before before wasm-opt)," \
+        "$(wc -c <"$out/showcase_bg.wasm.gz") gzipped, $(wc -c <"$out/showcase_bg.wasm.br") brotli"
+else
+    echo "showcase_bg.wasm: $bytes bytes (profile $profile)"
+fi
+echo "built in $(($(date +%s) - started)) s"
 ls -l "$out"

@@ -7,8 +7,8 @@ use bevy::ecs::prelude::*;
 use super::model::FallModel;
 use super::store::Store;
 use super::store::block::{Constants, FallConstants, PerFall};
+use super::store::cold::FallStart;
 use super::store::pose::LeafPose;
-use super::store::release::FallStart;
 use super::store::view::FallView;
 use crate::lod::LodTiers;
 

@@ -20,8 +20,8 @@ use super::model::motion::FallScales;
 use super::model::regime::{PrimitiveMotion, Regime};
 use super::model::release::FallRelease;
 use super::presets::FallPreset;
+use super::store::cold::FallStart;
 use super::store::path::FallPath;
-use super::store::release::FallStart;
 use crate::error::InvalidValue;
 use crate::lifecycle::Described;
 

@@ -15,9 +15,9 @@ use crate::freefall::model::{
 use crate::freefall::store::Store;
 use crate::freefall::store::air::Air;
 use crate::freefall::store::block::{FallConstants, Shared};
+use crate::freefall::store::cold::FallStart;
 use crate::freefall::store::driver::Step;
 use crate::freefall::store::path::FallPath;
-use crate::freefall::store::release::FallStart;
 use crate::freefall::store::view::FallView;
 use crate::lod::{Focus, LodTiers};
 use crate::math::geometry::{Q, V3};

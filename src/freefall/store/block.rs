@@ -1,18 +1,12 @@
 //! A block of the fall store: [`W`] falls side by side, each number of their state in a column
-//! of `W` lanes ([`Hot`]), so a step loads and stores whole lanes; their rarely touched state
-//! ([`Cold`]) one struct a fall beside the blocks; their constants ([`Constants`]) shared by the
-//! store or held per fall.
+//! of `W` lanes ([`Hot`]), so a step loads and stores whole lanes; their constants
+//! ([`Constants`]) shared by the store or held per fall. Their rarely touched state is
+//! [`Cold`](super::cold::Cold), one struct a fall beside the blocks.
 
-use std::sync::Arc;
+use crate::freefall::model::motion::FallScales;
 
-use bevy::math::Vec3;
-
-use crate::freefall::model::database::SearchMemo;
-use crate::freefall::model::markov::BoundedChain;
-use crate::freefall::model::motion::{FallScales, Glide};
+use crate::freefall::model::database::TrajectoryDatabase;
 use crate::freefall::model::piece::Piece;
-use crate::freefall::model::random::FallRng;
-use crate::freefall::model::regime::PrimitiveMotion;
 use crate::lod::LodTiers;
 use crate::math::lane::Lane;
 
@@ -238,74 +232,24 @@ impl<K: Constants> Block<K> {
         self.handle[to] = source.handle[from];
         K::copy_lane(&mut self.consts, to, &source.consts, from);
     }
-}
 
-/// The piece before a motion change, while the change blends: its time and offset run on past
-/// its end.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Blend {
-    pub piece: Piece,
-    pub time: f32,
-    pub offset: Vec3,
-    pub elapsed: f32,
-    pub length: f32,
-}
-
-/// The part of the release orientation the synthesis does not reproduce, fading out.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct ReleaseFade {
-    pub residual: bevy::math::Quat,
-    pub elapsed: f32,
-    pub length: f32,
-}
-
-/// How far the shown pose was from the path when the fall was stepped, eased out by `end`
-/// (a step that came before the last span was shown: a change to a finer tier).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Easing {
-    /// Shown position − the path's, at `start`.
-    pub offset: Vec3,
-    /// Shown rotation × the path's inverse, at `start`.
-    pub turn: bevy::math::Quat,
-    pub start: f64,
-    /// The clock when the easing is over (later steps do not push it back).
-    pub end: f64,
-}
-
-/// What only a piece's end, a motion change, a landing or a change of tier touches.
-#[derive(Clone, Debug)]
-pub(crate) struct Cold {
-    pub scales: FallScales,
-    pub chain: Arc<BoundedChain>,
-    pub rng: FallRng,
-    pub motion: PrimitiveMotion,
-    /// Seconds left in `motion` (drawn on entering it, counted down by each piece).
-    pub sojourn: f32,
-    /// A₀ of the current motion with its Gaussian draw (§2.3.2), m.
-    pub amplitude: f32,
-    pub glide: Glide,
-    /// No swing yet: the first one reverses nothing.
-    pub fresh: bool,
-    /// The piece under way (its compiled words are in the block).
-    pub piece: Piece,
-    /// Sideways position along the heading when the piece began, m, and the centre the swings
-    /// go round (moved on by half-turns, which drift).
-    pub lateral: f32,
-    pub centre: f32,
-    /// The swing search key's angle component (from I*, fixed for a fall).
-    pub key_angle: f32,
-    /// Seconds since release when the piece began.
-    pub piece_start: f64,
-    pub markov_steps: u32,
-    /// Boxed: rare, and the cold state of a hundred thousand leaves stays small.
-    pub previous: Option<Box<Blend>>,
-    pub release: Option<Box<ReleaseFade>>,
-    pub easing: Option<Box<Easing>>,
-    /// Times it was let go (its first release counts).
-    pub releases: u32,
-    /// Set when its motion changed or it was lifted from the ground, until the step reports it.
-    pub changed: bool,
-    pub lifted: bool,
-    /// The candidates of its last swing search.
-    pub search: SearchMemo,
+    /// Writes `piece`, compiled, into lane `k`.
+    pub fn write_piece(&mut self, k: usize, piece: &Piece, db: &TrajectoryDatabase) {
+        let words = piece.words(db);
+        let h: &mut Hot = &mut self.hot;
+        h.duration[k] = words.duration;
+        h.inv_duration[k] = words.inv_duration;
+        for (column, value) in [
+            &mut h.w0, &mut h.w1, &mut h.w2, &mut h.w3, &mut h.w4, &mut h.w5, &mut h.w6, &mut h.w7,
+            &mut h.w8, &mut h.w9, &mut h.w10,
+        ]
+        .into_iter()
+        .zip(words.words)
+        {
+            column[k] = value;
+        }
+        h.curve[k] = if words.curve { 1.0 } else { 0.0 };
+        h.tumble[k] = if words.tumble { 1.0 } else { 0.0 };
+        self.row[k] = words.row;
+    }
 }

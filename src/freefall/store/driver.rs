@@ -19,7 +19,8 @@ use wide::f32x4;
 type Lanes = f32x4;
 
 use super::air::{Air, Reading};
-use super::block::{Block, Cold, Constants, W};
+use super::block::{Block, Constants, W};
+use super::cold::Cold;
 use super::kernel;
 use super::slot::{Part, Slot, StepOutcome};
 use super::{Store, band_of, due_bands};

@@ -6,7 +6,7 @@
 //! |---|---|---|
 //! | [`Hot`](block::Hot) columns | control points, orientations, carry, drift, f(t), the piece's clock and offset, the heading, the piece compiled (1/T, its words, its database row), flags, the tier's span | every step of the fall, lane by lane |
 //! | [`Constants`](block::Constants) | U, 1/ℓ, the ground, W, levels of detail | splatted for a cloud; a column for objects |
-//! | [`Cold`](block::Cold) | generator, chain, motion and sojourn, the piece itself, blends, release fade, easing | when a piece ends, a motion changes, a fall lands or is let go |
+//! | [`Cold`](cold::Cold) | generator, chain, motion and sojourn, the piece itself, blends, release fade, easing | when a piece ends, a motion changes, a fall lands or is let go |
 //!
 //! **Levels of detail in bands.** A fall's tier (1, 2 or 4: stepped every fixed step, every
 //! second or every fourth) and its phase (which of those steps, from its handle) put it in one of
@@ -24,20 +24,20 @@
 
 pub(crate) mod air;
 pub(crate) mod block;
+pub(crate) mod cold;
 pub(crate) mod driver;
 pub(crate) mod kernel;
 pub(crate) mod path;
-pub(crate) mod piece;
 pub(crate) mod pose;
-pub(crate) mod release;
 pub(crate) mod slot;
 pub(crate) mod view;
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
-use self::block::{Block, Cold, Constants, W};
-use self::release::{FallStart, blank_cold};
+use self::block::{Block, Constants, W};
+use self::cold::Cold;
+use self::cold::FallStart;
 use self::slot::Slot;
 use crate::freefall::lod::FallClock;
 use crate::freefall::model::FallModel;
@@ -186,7 +186,7 @@ impl<K: Constants> Store<K> {
                 self.places.len() as u32 - 1
             }
         };
-        let s = self.bands[0].push(blank_cold(start));
+        let s = self.bands[0].push(Cold::blank(start));
         self.places[handle as usize] = Place {
             band: 0,
             index: s as u32,

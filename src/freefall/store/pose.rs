@@ -5,7 +5,8 @@
 use bevy::math::{Quat, Vec3};
 use bevy::tasks::TaskPool;
 
-use super::block::{Block, Cold, Constants, Hot, W};
+use super::block::{Block, Constants, Hot, W};
+use super::cold::Cold;
 use super::{BANDS, Store};
 use crate::math::geometry::{Q, V3};
 use crate::math::lane::Lane;

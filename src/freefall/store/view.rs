@@ -4,7 +4,8 @@ use bevy::math::{Quat, Vec3};
 
 use super::Store;
 use super::block::Constants;
-use super::block::{Cold, Hot, W};
+use super::block::{Hot, W};
+use super::cold::Cold;
 use super::pose::smoothed;
 use crate::freefall::model::motion::FallScales;
 use crate::freefall::model::regime::PrimitiveMotion;

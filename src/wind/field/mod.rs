@@ -97,6 +97,7 @@ pub struct WindField {
 mod live;
 pub(crate) mod profile;
 mod read;
+mod snapshot;
 pub(crate) use read::Moment;
 
 /// Numbers the fields made by [`WindField::new`].

@@ -6,9 +6,11 @@
 
 use bevy::math::Vec3;
 
-use super::block::{Blend, Block, Cold, Constants, Easing};
+pub(crate) mod release;
+
+use super::block::{Block, Constants};
+use super::cold::{Blend, Cold, Easing};
 use super::kernel::{self, Motion, commit, fall_on, motion, orient, sample_piece, turned, yaw};
-use super::piece::write_piece;
 use super::pose::{LeafPose, shown, smoothed};
 use crate::freefall::lod::FallClock;
 use crate::freefall::model::FallModel;
@@ -319,7 +321,7 @@ impl<K: Constants> Slot<'_, K> {
         let h = &mut self.block.hot;
         h.t[k] = 0.0;
         (h.ox[k], h.oy[k], h.oz[k]) = (0.0, 0.0, 0.0);
-        write_piece(self.block, k, &piece, db);
+        self.block.write_piece(k, &piece, db);
     }
 
     /// The orientation while the release orientation fades (see [`orient`] for the others):

@@ -6,18 +6,12 @@ use std::sync::Arc;
 
 use bevy::math::{Quat, Vec3};
 
-use super::block::{Cold, Constants, FallConstants, ReleaseFade};
-use super::piece::write_piece;
-use super::slot::Slot;
+use super::Slot;
 use crate::freefall::model::FallModel;
-use crate::freefall::model::database::SearchMemo;
-use crate::freefall::model::markov::BoundedChain;
-use crate::freefall::model::motion::{FallScales, Glide};
-use crate::freefall::model::piece::Piece;
-use crate::freefall::model::random::FallRng;
-use crate::freefall::model::regime::PrimitiveMotion;
+use crate::freefall::model::motion::Glide;
 use crate::freefall::model::release::{FallRelease, LIFT_OFF_HOP};
-use crate::lod::LodTiers;
+use crate::freefall::store::block::{Constants, FallConstants};
+use crate::freefall::store::cold::{Cold, FallStart, ReleaseFade};
 use crate::math::geometry::{Q, V3};
 use crate::math::kernels::atan2;
 
@@ -25,45 +19,6 @@ use crate::math::kernels::atan2;
 const RELEASE_SWINGS: f32 = 1.0;
 /// ... and at least this long, s.
 const MIN_RELEASE: f32 = 0.25;
-
-/// Everything that starts a fall.
-#[derive(Clone, Debug)]
-pub(crate) struct FallStart {
-    pub scales: FallScales,
-    pub chain: Arc<BoundedChain>,
-    pub seed: u64,
-    pub release: FallRelease,
-    /// Eq. 15's W, rad.
-    pub max_angle: f32,
-    pub lod: Option<LodTiers>,
-}
-
-/// The cold state of a fall about to be let go (what [`Slot::release`] fills in).
-pub(crate) fn blank_cold(start: &FallStart) -> Cold {
-    Cold {
-        scales: start.scales,
-        chain: Arc::clone(&start.chain),
-        rng: FallRng::new(start.seed),
-        motion: PrimitiveMotion::SteadyDescent,
-        sojourn: f32::INFINITY,
-        amplitude: 0.0,
-        glide: Glide::Right,
-        fresh: true,
-        piece: Piece::curve(&start.scales, PrimitiveMotion::SteadyDescent, 0.0, 0.0, 0.0),
-        lateral: 0.0,
-        centre: 0.0,
-        key_angle: start.scales.swing_key_angle(),
-        piece_start: 0.0,
-        markov_steps: 0,
-        previous: None,
-        release: None,
-        easing: None,
-        releases: 1,
-        changed: false,
-        lifted: false,
-        search: SearchMemo::default(),
-    }
-}
 
 impl<K: Constants> Slot<'_, K> {
     /// Lets the fall go as `start` says, its clock at `clock` (its first step is then taken
@@ -80,7 +35,7 @@ impl<K: Constants> Slot<'_, K> {
         );
         K::set(&mut self.block.consts, self.k, &constants);
         let releases = self.cold.releases;
-        *self.cold = blank_cold(start);
+        *self.cold = Cold::blank(start);
         self.cold.releases = releases;
         let cold = &mut *self.cold;
         let motion = cold.chain.start(&mut cold.rng);
@@ -159,7 +114,7 @@ impl<K: Constants> Slot<'_, K> {
             column[k] = value;
         }
         self.block.updated[k] = clock;
-        write_piece(self.block, k, &piece, db);
+        self.block.write_piece(k, &piece, db);
         self.set_plain();
     }
 
