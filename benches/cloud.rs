@@ -88,9 +88,8 @@ fn cloud(c: &mut Criterion) {
     let wind = WindField::new(WindConfig::default()).unwrap();
     let full = warmed(&model, &wind, LodTiers::FULL, None, &pool);
     println!(
-        "cloud: {} bytes a leaf ({} of them a FallPath)",
-        full.memory_bytes() / full.len(),
-        std::mem::size_of::<bevy_windfall::freefall::FallPath>()
+        "cloud: {} bytes a leaf (the store's columns and cold state, spare capacity included)",
+        full.memory_bytes() / full.len()
     );
     let mut group = c.benchmark_group("cloud_step_100k");
     group

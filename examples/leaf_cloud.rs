@@ -9,8 +9,6 @@
 mod common;
 
 use bevy::prelude::*;
-use bevy_windfall::freefall::{CloudRegion, LeafCloudState};
-use bevy_windfall::lod::LodTiers;
 use bevy_windfall::prelude::*;
 
 fn main() {

@@ -9,7 +9,6 @@
 mod common;
 
 use bevy::prelude::*;
-use bevy_windfall::freefall::CloudRegion;
 use bevy_windfall::prelude::*;
 
 fn main() {

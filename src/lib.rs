@@ -20,6 +20,7 @@
 //! - [Determinism and multiplayer](#determinism-and-multiplayer)
 //! - [Browsers (wasm)](#browsers-wasm)
 //! - [Cargo features](#cargo-features)
+//! - [FAQ](#faq): nothing moves, leaves stutter, too slow
 //! - [How the crate is laid out](#how-the-crate-is-laid-out)
 //!
 //! # Getting started
@@ -212,6 +213,31 @@
 //! | `serde` | `Serialize`/`Deserialize` for the wind settings and [`WindSnapshot`](wind::WindSnapshot) |
 //! | `avian` | `AvianAero` and `AvianAeroPlugin` (in the group) for avian3d 0.7 |
 //!
+//! # FAQ
+//!
+//! **Nothing moves.** The part's plugin must be added (the group [`WindfallPlugins`](struct@WindfallPlugins) adds them
+//! all; a single plugin needs the `WindPlugin` too) and the entity needs a `Transform`. An
+//! entity whose numbers or transform are bad gets an `…Invalid` component naming the field
+//! ([`FallingObjectInvalid`](freefall::FallingObjectInvalid), `ClothInvalid`, …) and a warning
+//! once: query for it. Headless, the fixed step only runs when time advances (`MinimalPlugins`
+//! with a `TimeUpdateStrategy`, as the tests do). A flag with no wind hangs, and a landed leaf
+//! stays down until the wind at its place is faster than
+//! [`FallRelease::LIFT_OFF_FACTOR`](freefall::FallRelease::LIFT_OFF_FACTOR) times its descent
+//! speed.
+//!
+//! **Leaves stutter.** Falls are simulated on the fixed step and drawn between their last two
+//! steps in `WriteBack`; a system of yours that writes their `Transform` after that (or in
+//! `FixedUpdate` without the sets) overrides the pose: order it against [`WindfallSystems`].
+//! Far leaves with [`FallLod`](freefall::FallLod) or a cloud's tiers step every second or
+//! fourth step and are eased, not frozen, in between.
+//!
+//! **Too slow.** For hundreds of leaves or more use one [`LeafCloud`](freefall::LeafCloud)
+//! instead of entities (one mesh, a structure-of-arrays store stepped in SIMD lanes), give it
+//! tiers ([`LodTiers`](lod::LodTiers)) and put [`LodFocus`](lod::LodFocus) on the camera; give
+//! many single objects [`FallLod`](freefall::FallLod) and cloth `ClothLod`; build with
+//! optimisation (`[profile.dev.package.bevy_windfall] opt-level = 3` in a game's Cargo.toml);
+//! `docs/performance.md` says what each part costs.
+//!
 //! # How the crate is laid out
 //!
 //! In layers, each using only those below it: [`InvalidValue`], the guards and [`schedule`] at
@@ -271,11 +297,11 @@ pub mod prelude {
         Cloth, ClothAttachment, ClothGrid, ClothParams, ClothPlugin, ClothPreset, ClothState,
     };
     pub use crate::freefall::{
-        FallPlugin, FallPreset, FallSettings, FallState, FallStore, FallingObject, Fluid, Landed,
-        LeafCloud, LeafCloudPlugin, PrimitiveMotion, Shape,
+        CloudRegion, FallLod, FallPlugin, FallPreset, FallSettings, FallState, FallStore,
+        FallingObject, Fluid, Landed, LeafCloud, LeafCloudPlugin, LeafCloudState, PrimitiveMotion,
+        Shape,
     };
-    pub use crate::lod::{LodFocus, LodView};
-    pub use crate::spectrum::fbm;
+    pub use crate::lod::{LodFocus, LodTiers, LodView};
     pub use crate::wind::{
         SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin, WindSettings,
         WindShelter, WindSource,

@@ -8,7 +8,6 @@
 use bevy::app::{App, TaskPoolOptions, TaskPoolPlugin};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use bevy_windfall::freefall::{CloudRegion, FallPreset, LeafCloudState};
 use bevy_windfall::prelude::*;
 
 /// Fixed steps the fingerprint runs.

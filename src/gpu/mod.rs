@@ -35,7 +35,7 @@
 //!
 //! Time in the shader is relative to the uploaded clock (`dt`, seconds): everything that grows
 //! with the clock is reduced on the CPU in f64, so f32 on the GPU stays as exact as the CPU
-//! after hours of play. `tests/gpu_wind.rs` checks the GPU against the CPU at thousands of points.
+//! after hours of play. `tests/it/gpu_wind.rs` checks the GPU against the CPU at thousands of points.
 
 mod cloud;
 mod layout;

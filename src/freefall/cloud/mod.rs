@@ -32,7 +32,7 @@
 //!
 //! Leaf i's stream is seeded from the cloud's seed and i (and how many times it was let go), and
 //! leaves do not interact, so a cloud gives the same bits on one thread or many
-//! (`tests/cloud.rs`).
+//! (`tests/it/cloud.rs`).
 
 mod leaves;
 mod plugin;
