@@ -65,10 +65,22 @@ pub(crate) fn due_bands(steps: u64) -> [usize; 3] {
 }
 
 /// A dense run of falls: `len` of them in blocks of [`W`], their cold state beside.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub(crate) struct Band<K: Constants> {
     pub blocks: Vec<Block<K>>,
     pub cold: Vec<Cold>,
+}
+
+/// A clone keeps the room the band has grown to, so that it steps as the original does: a band
+/// cloned to its length would reallocate (and copy whole) on the first fall that moves into it.
+impl<K: Constants> Clone for Band<K> {
+    fn clone(&self) -> Self {
+        let mut blocks = Vec::with_capacity(self.blocks.capacity());
+        blocks.extend_from_slice(&self.blocks);
+        let mut cold = Vec::with_capacity(self.cold.capacity());
+        cold.extend_from_slice(&self.cold);
+        Self { blocks, cold }
+    }
 }
 
 impl<K: Constants> Default for Band<K> {
