@@ -15,7 +15,7 @@ import sys
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src")
 LAYERS = {
     "error": 0, "guard": 0, "schedule": 0, "lifecycle": 0, "math": 0, "spectrum": 1, "wind": 2, "lod": 3,
-    "freefall": 4, "cloth": 4, "aero": 5, "gpu": 6, "inspector": 7, "plugins": 8,
+    "freefall": 4, "cloth": 4, "aero": 5, "render": 6, "inspector": 7, "plugins": 8,
 }
 FACADES = {("aero",), ("cloth",), ("freefall",), ("wind",), ("spectrum",)}
 MAX_LINES = 450

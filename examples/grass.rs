@@ -10,8 +10,8 @@ mod common;
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
-use bevy_windfall::gpu::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 use bevy_windfall::prelude::*;
+use bevy_windfall::render::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 
 /// Blades, and the tallest blade, m.
 const BLADES: u32 = 60_000;

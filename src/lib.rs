@@ -94,9 +94,9 @@
 //! [`WindField::ease_to`](wind::WindField::ease_to) builds a storm up or veers the wind without a
 //! jump; [`WindConfig::beaufort`](wind::WindConfig::beaufort) gives the wind of a Beaufort force.
 //!
-//! On the GPU (feature `render`): `gpu::WindGpuPlugin` uploads the field, and the WGSL module
+//! On the GPU (feature `render`): `render::WindGpuPlugin` uploads the field, and the WGSL module
 //! `bevy_windfall::wind` samples it exactly as [`WindField::velocity_at`](wind::WindField::velocity_at)
-//! does (sources and shelters included), so grass and foliage (`gpu::WindSway`, a material
+//! does (sources and shelters included), so grass and foliage (`render::WindSway`, a material
 //! extension) sway in the same gusts that carry the leaves.
 //!
 //! # Falling objects
@@ -113,7 +113,7 @@
 //! description in one entity: each the same fall, stored in one array, stepped in parallel with
 //! the same bits on any thread count, with levels of detail around a
 //! [`LodFocus`](lod::LodFocus) and (feature `render`) one draw call
-//! (`gpu::LeafCloudRenderPlugin`). Single objects take the same levels of detail with
+//! (`render::LeafCloudRenderPlugin`). Single objects take the same levels of detail with
 //! [`FallLod`](freefall::FallLod), cloths with [`ClothLod`](cloth::ClothLod) (a coarser grid far
 //! away); see [`lod`].
 //!
@@ -206,7 +206,7 @@
 //!
 //! | feature | adds |
 //! |---|---|
-//! | `render` (default) | drawing: default looks, leaf clouds in one draw call, the wind on the GPU (`gpu`: the WGSL module `bevy_windfall::wind`, the `WindSway` material); nothing in an app without Bevy's renderer |
+//! | `render` (default) | drawing: default looks, leaf clouds in one draw call, the wind on the GPU (`render`: the WGSL module `bevy_windfall::wind`, the `WindSway` material); nothing in an app without Bevy's renderer |
 //! | *(no default features)* | everything above, headless; Bevy with `default-features = false` |
 //! | `gizmos` | `WindfallDebugPlugin`: wind arrows, fall trails, cloth yarns |
 //! | `egui` | `inspector::WindfallInspectorPlugin`, a tuning panel (bevy_egui 0.42) |
@@ -241,7 +241,7 @@
 //! # How the crate is laid out
 //!
 //! In layers, each using only those below it: [`InvalidValue`], the guards and [`schedule`] at
-//! the bottom; [`spectrum`]; [`wind`]; [`lod`]; [`freefall`] and [`cloth`]; [`aero`]; `gpu` and
+//! the bottom; [`spectrum`]; [`wind`]; [`lod`]; [`freefall`] and [`cloth`]; [`aero`]; `render` and
 //! `inspector`; the plugin group; and this facade, which nothing imports. Each domain keeps its
 //! components, its models (free of the ECS, usable on their own) and its plugin in files of their
 //! own; limits are associated with the types they bound. `docs/architecture.md` in the
@@ -262,14 +262,14 @@ pub mod aero;
 pub mod cloth;
 mod error;
 pub mod freefall;
-#[cfg(feature = "render")]
-pub mod gpu;
 mod guard;
 #[cfg(feature = "egui")]
 pub mod inspector;
 mod lifecycle;
 pub mod lod;
 mod math;
+#[cfg(feature = "render")]
+pub mod render;
 #[doc(hidden)]
 pub use math::set_lanes;
 mod plugins;

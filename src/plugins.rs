@@ -58,7 +58,7 @@ impl PluginGroup for WindfallPlugins {
             .add(aero::AeroPlugin { schedule: s })
             .add(cloth::ClothPlugin { schedule: s });
         #[cfg(feature = "render")]
-        let group = group.add(crate::gpu::WindfallRenderPlugin);
+        let group = group.add(crate::render::WindfallRenderPlugin);
         #[cfg(feature = "avian")]
         let group = group.add(aero::AvianAeroPlugin::default());
         group

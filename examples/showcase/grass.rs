@@ -4,7 +4,7 @@
 use bevy::asset::RenderAssetUsages;
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
-use bevy_windfall::gpu::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
+use bevy_windfall::render::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 
 /// Blades in the meadow by default.
 pub const BLADES: usize = 120_000;

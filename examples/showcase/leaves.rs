@@ -10,9 +10,11 @@ use bevy_windfall::aero::{AeroState, PlateState};
 use bevy_windfall::freefall::{
     CloudRegion, FallLod, FallPreset, LeafCloud, LeafCloudState, PrimitiveMotion,
 };
-use bevy_windfall::gpu::{LeafCloudLook, SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 use bevy_windfall::lod::LodTiers;
 use bevy_windfall::prelude::*;
+use bevy_windfall::render::{
+    LeafCloudLook, SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial,
+};
 use bevy_windfall::wind::WindSource;
 
 use super::population::{CANOPY, Canopy, LEAVES, Stream, leaf};

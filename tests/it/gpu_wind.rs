@@ -29,8 +29,8 @@ use bevy::render::{Render, RenderApp, RenderPlugin, RenderSystems};
 use bevy::shader::ShaderDefVal;
 use bevy::time::TimeUpdateStrategy;
 use bevy::window::ExitCondition;
-use bevy_windfall::gpu::{GpuLayout, WindGpuBuffers, WindGpuPlugin, WindGpuUploads};
 use bevy_windfall::prelude::*;
+use bevy_windfall::render::{GpuLayout, WindGpuBuffers, WindGpuPlugin, WindGpuUploads};
 use bevy_windfall::wind::{Pulse, WindShelter, WindSource};
 
 const POINTS: usize = 4096;
@@ -540,7 +540,7 @@ fn the_gpu_samples_the_same_wind_as_the_cpu() {
 fn cloud_leaves_face_their_normals() {
     use bevy::mesh::{Mesh, VertexAttributeValues};
     use bevy_windfall::freefall::{FallPreset, FallingObject, Shape};
-    use bevy_windfall::gpu::LeafCloudLook;
+    use bevy_windfall::render::LeafCloudLook;
     let plain = [
         Shape::Ellipse {
             major: 0.1,

@@ -4,7 +4,7 @@
 //! [`FallPath`](super::FallPath) (the same phase diagram, Markov chain, trajectory database,
 //! search tree and wind coupling as a single `FallingObject`), but the leaves live in one
 //! contiguous array in [`LeafCloudState`] instead of an entity each, are stepped in parallel
-//! chunks of [`CloudLeaves::CHUNK`](crate::freefall::cloud::CloudLeaves::CHUNK), and are drawn (feature `render`, `gpu::LeafCloudRenderPlugin`) by
+//! chunks of [`CloudLeaves::CHUNK`](crate::freefall::cloud::CloudLeaves::CHUNK), and are drawn (feature `render`, `render::LeafCloudRenderPlugin`) by
 //! one draw of one mesh whose vertices read their leaf's pose from a storage buffer. No
 //! `Transform` per leaf, no change detection, no transform propagation: that is what 10 000
 //! single entities spend most of their frame on.

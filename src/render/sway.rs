@@ -92,7 +92,7 @@ impl SwaySettings {
 ///
 /// ```no_run
 /// use bevy::prelude::*;
-/// use bevy_windfall::gpu::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
+/// use bevy_windfall::render::{SwaySettings, WindGpuBuffers, WindSway, WindSwayMaterial};
 ///
 /// fn meadow(
 ///     mut commands: Commands,
@@ -178,7 +178,7 @@ impl AsBindGroup for WindSway {
 
 impl MaterialExtension for WindSway {
     fn vertex_shader() -> ShaderRef {
-        "embedded://bevy_windfall/gpu/sway.wgsl".into()
+        "embedded://bevy_windfall/render/sway.wgsl".into()
     }
 
     fn enable_shadows() -> bool {

@@ -1,6 +1,6 @@
 // Vertex shader of `LeafCloudMaterial`: one mesh holds every leaf of a cloud at the origin,
 // each vertex tagged with its leaf's index (the second UV set's x); the leaf's pose (position,
-// rotation) is read from a storage buffer (or a texture) written once per frame. See `src/gpu/cloud.rs`.
+// rotation) is read from a storage buffer (or a texture) written once per frame. See `src/render/cloud.rs`.
 #import bevy_pbr::{
     forward_io::{Vertex, VertexOutput},
     view_transformations::position_world_to_clip,

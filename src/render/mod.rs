@@ -77,7 +77,7 @@ use crate::wind::WindField;
 /// ```no_run
 /// use bevy::prelude::*;
 /// use bevy_windfall::prelude::*;
-/// use bevy_windfall::gpu::WindGpuPlugin;
+/// use bevy_windfall::render::WindGpuPlugin;
 ///
 /// App::new()
 ///     .add_plugins((DefaultPlugins, WindPlugin::default(), WindGpuPlugin))

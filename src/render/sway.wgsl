@@ -1,6 +1,6 @@
 // Vertex shader of `WindSway` materials: every vertex bends downwind by the wind where it is
 // (`bevy_windfall::wind`, the same field the falling leaves feel), more the higher it is above
-// the material's anchor. See `src/gpu/sway.rs` for the model.
+// the material's anchor. See `src/render/sway.rs` for the model.
 #import bevy_pbr::{
     mesh_functions,
     forward_io::{Vertex, VertexOutput},

@@ -49,7 +49,7 @@ struct WindParams {
 }
 
 // Where the device has storage buffers (Bevy's `AVAILABLE_STORAGE_BUFFER_BINDINGS`, the rule of
-// `GpuLayout::of` in src/gpu/layout.rs) the nodes and parameters are read-only storage; on
+// `GpuLayout::of` in src/render/layout.rs) the nodes and parameters are read-only storage; on
 // WebGL2 the nodes are an RGBA32F texture and the parameters a uniform buffer of the same bytes.
 #if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 4
 #ifdef WIND_BIND_GROUP

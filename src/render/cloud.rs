@@ -101,7 +101,7 @@ impl AsBindGroup for CloudPoses {
 
 impl MaterialExtension for CloudPoses {
     fn vertex_shader() -> ShaderRef {
-        "embedded://bevy_windfall/gpu/cloud.wgsl".into()
+        "embedded://bevy_windfall/render/cloud.wgsl".into()
     }
 
     fn enable_shadows() -> bool {
@@ -343,7 +343,7 @@ fn drawn(leaves: usize) -> usize {
     leaves.min(LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)
 }
 
-/// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::gpu::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of
+/// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::render::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of
 /// `object`'s outline (its look's, as [`FallingObject::mesh`] draws it, with fewer points) at the
 /// origin, each a flat fan from its centre facing +Y, tagged with its index in UV set 1 and
 /// coloured from `look`.
@@ -404,7 +404,7 @@ impl LeafCloudRenderPlugin {
 }
 
 impl LeafCloudLook {
-    /// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::gpu::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of
+    /// `count` leaves (at least 1, at most [`LeafCloudRenderPlugin::MAX_DRAWN_LEAVES`](crate::render::LeafCloudRenderPlugin::MAX_DRAWN_LEAVES)) of
     /// `object`'s outline at the origin, each a fan facing +Y, tagged with its index in UV set 1
     /// and coloured from this look: the mesh a cloud of `object` is drawn with.
     pub fn mesh(&self, object: &FallingObject, count: u32) -> Mesh {
