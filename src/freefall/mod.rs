@@ -29,10 +29,10 @@
 //! timestep, [`FallPreset`]s, the default looks, levels of detail ([`FallLod`]) and [`cloud`].
 
 pub mod cloud;
+mod fall_lod;
 mod fall_store;
 #[cfg(feature = "gizmos")]
 mod gizmos;
-mod lod;
 mod look;
 mod model;
 mod object;
@@ -41,12 +41,12 @@ mod presets;
 mod store;
 
 pub use cloud::{CloudRegion, LeafCloud, LeafCloudInvalid, LeafCloudPlugin, LeafCloudState};
+pub use fall_lod::FallLod;
 pub use fall_store::FallStore;
 #[cfg(feature = "gizmos")]
 pub use gizmos::FallGizmos;
 #[cfg(feature = "gizmos")]
 pub(crate) use gizmos::FallGizmosPlugin;
-pub use lod::FallLod;
 #[cfg(feature = "render")]
 pub(crate) use look::{CLOUD_POINTS, mix, outline};
 pub use model::FallModel;

@@ -10,8 +10,8 @@ use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::Transform;
 
+use super::fall_lod::FallLod;
 use super::fall_store::FallStore;
-use super::lod::FallLod;
 use super::model::FallModel;
 use super::model::body::{Fluid, Shape};
 use super::model::error::FallError;

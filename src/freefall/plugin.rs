@@ -7,8 +7,8 @@ use bevy::tasks::ComputeTaskPool;
 use bevy::time::{Fixed, Time};
 use bevy::transform::components::Transform;
 
+use super::fall_lod::FallLod;
 use super::fall_store::FallStore;
-use super::lod::FallLod;
 use super::model::FallModel;
 use super::model::tilt::WindTilt;
 use super::object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};

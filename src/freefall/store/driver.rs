@@ -24,7 +24,7 @@ use super::cold::Cold;
 use super::kernel;
 use super::slot::{Part, Slot, StepOutcome};
 use super::{Store, band_of, due_bands};
-use crate::freefall::lod::FallClock;
+use crate::freefall::fall_lod::FallClock;
 use crate::freefall::model::FallModel;
 use crate::freefall::model::release::FallRelease;
 use crate::lod::Focus;

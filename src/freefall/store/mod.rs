@@ -39,7 +39,7 @@ use self::block::{Block, Constants, W};
 use self::cold::Cold;
 use self::cold::FallStart;
 use self::slot::Slot;
-use crate::freefall::lod::FallClock;
+use crate::freefall::fall_lod::FallClock;
 use crate::freefall::model::FallModel;
 
 /// How many bands: tier 1; tier 2 at phases 0 and 1; tier 4 at phases 0 to 3.

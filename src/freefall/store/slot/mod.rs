@@ -12,7 +12,7 @@ use super::block::{Block, Constants};
 use super::cold::{Blend, Cold, Easing};
 use super::kernel::{self, Motion, commit, fall_on, motion, orient, sample_piece, turned, yaw};
 use super::pose::{LeafPose, shown, smoothed};
-use crate::freefall::lod::FallClock;
+use crate::freefall::fall_lod::FallClock;
 use crate::freefall::model::FallModel;
 use crate::freefall::model::piece::Piece;
 use crate::math::geometry::{Q, V3};
