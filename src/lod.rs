@@ -89,15 +89,25 @@ impl LodTiers {
     /// Checks the distances: `near` ≥ 0 and `far` ≥ `near`, neither NaN; the error names the
     /// bad field (`near` or `far`).
     pub(crate) fn check(&self) -> Result<(), InvalidValue> {
+        self.check_as("near", "far")
+    }
+
+    /// [`Self::check`], the fields named `near` and `far` as the holder calls them (a cloud's
+    /// `lod.near`).
+    pub(crate) fn check_as(
+        &self,
+        near: &'static str,
+        far: &'static str,
+    ) -> Result<(), InvalidValue> {
         InvalidValue::check(
             !(self.near.is_nan() || self.near < 0.0),
-            "near",
+            near,
             self.near,
             "must be ≥ 0",
         )?;
         InvalidValue::check(
             !(self.far.is_nan() || self.far < self.near),
-            "far",
+            far,
             self.far,
             "must be ≥ near",
         )

@@ -91,29 +91,31 @@ impl WindShelter {
     /// # Errors
     /// The first field that fails, named (`half_extents`, `kind.lee_heights`, `kind.depth`).
     pub fn validate(&self) -> Result<(), WindError> {
-        let invalid = |field, value, reason| {
-            Err(WindError::Invalid(InvalidValue {
-                field,
-                value,
-                reason,
-            }))
-        };
         let h = self.half_extents;
-        if !(h.is_finite() && h.min_element() >= 0.0) {
-            let worst = if h.is_finite() {
-                h.min_element()
-            } else {
-                f32::NAN
-            };
-            return invalid("half_extents", worst, "must be finite and ≥ 0");
-        }
+        let worst = if h.is_finite() {
+            h.min_element()
+        } else {
+            f32::NAN
+        };
+        InvalidValue::check(
+            h.is_finite() && h.min_element() >= 0.0,
+            "half_extents",
+            worst,
+            "must be finite and ≥ 0",
+        )?;
         if let ShelterKind::Wall { lee_heights, depth } = self.kind {
-            if !(lee_heights.is_finite() && lee_heights >= 0.0) {
-                return invalid("kind.lee_heights", lee_heights, "must be finite and ≥ 0");
-            }
-            if !(0.0..=1.0).contains(&depth) {
-                return invalid("kind.depth", depth, "must be in [0, 1]");
-            }
+            InvalidValue::check(
+                lee_heights.is_finite() && lee_heights >= 0.0,
+                "kind.lee_heights",
+                lee_heights,
+                "must be finite and ≥ 0",
+            )?;
+            InvalidValue::check(
+                (0.0..=1.0).contains(&depth),
+                "kind.depth",
+                depth,
+                "must be in [0, 1]",
+            )?;
         }
         Ok(())
     }

@@ -61,35 +61,31 @@ impl PlateState {
     /// length: it is normalised), and finite velocities within [`PlateState::MAX_SPEED`](crate::aero::PlateState::MAX_SPEED). The field
     /// names start with `state.`.
     pub fn validate(&self) -> Result<(), AeroError> {
-        let invalid = |field, value, reason| {
-            AeroError::Invalid(InvalidValue {
-                field,
-                value,
-                reason,
-            })
-        };
         if let Some(value) = crate::guard::bad_position(self.position) {
-            return Err(invalid(
+            InvalidValue::check(
+                false,
                 "state.position",
                 value,
                 crate::guard::POSITION_REASON,
-            ));
+            )?;
         }
-        if crate::guard::unit_quat(self.rotation).is_none() {
-            return Err(invalid(
-                "state.rotation",
-                self.rotation.length(),
-                "must be a finite, non-zero quaternion",
-            ));
-        }
+        InvalidValue::check(
+            crate::guard::unit_quat(self.rotation).is_some(),
+            "state.rotation",
+            self.rotation.length(),
+            "must be a finite, non-zero quaternion",
+        )?;
         for (field, v) in [
             ("state.velocity", self.velocity),
             ("state.angular_velocity", self.angular_velocity),
         ] {
             let largest = v.abs().max_element();
-            if largest.is_nan() || largest > PlateState::MAX_SPEED {
-                return Err(invalid(field, largest, "must be finite and within ±1e6"));
-            }
+            InvalidValue::check(
+                !largest.is_nan() && largest <= PlateState::MAX_SPEED,
+                field,
+                largest,
+                "must be finite and within ±1e6",
+            )?;
         }
         Ok(())
     }

@@ -146,50 +146,35 @@ impl LeafCloud {
     /// ordered, negative or NaN LOD distances (far < near), a `recycle_after` not finite and
     /// ≥ 0, or a ground that is not finite and within ±[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE).
     pub fn leaves(&self, model: &FallModel, ground: f32) -> Result<CloudLeaves, FallError> {
-        let invalid = |field, value, reason| {
-            FallError::Invalid(InvalidValue {
-                field,
-                value,
-                reason,
-            })
-        };
         let regime = self.object.regime()?;
-        if self.count > LeafCloud::MAX_LEAVES {
-            return Err(invalid("count", self.count as f32, "must be ≤ 4 000 000"));
-        }
+        InvalidValue::check(
+            self.count <= LeafCloud::MAX_LEAVES,
+            "count",
+            self.count as f32,
+            "must be ≤ 4 000 000",
+        )?;
         let within =
             |v: Vec3| v.is_finite() && v.abs().max_element() <= crate::guard::MAX_COORDINATE;
-        if !within(self.region.min) {
-            return Err(invalid(
-                "region.min",
-                self.region.min.max_element(),
-                "must be finite and within ±MAX_COORDINATE",
-            ));
-        }
-        if !within(self.region.max) || self.region.max.cmplt(self.region.min).any() {
-            return Err(invalid(
-                "region.max",
-                self.region.max.min_element(),
-                "must be finite, within ±MAX_COORDINATE and ≥ region.min on every axis",
-            ));
-        }
-        if let Err(InvalidValue {
-            field,
-            value,
-            reason,
-        }) = self.lod.check()
-        {
-            let field = if field == "near" {
-                "lod.near"
-            } else {
-                "lod.far"
-            };
-            return Err(invalid(field, value, reason));
-        }
-        if let Some(t) = self.recycle_after
-            && !(t.is_finite() && t >= 0.0)
-        {
-            return Err(invalid("recycle_after", t, "must be finite and ≥ 0"));
+        InvalidValue::check(
+            within(self.region.min),
+            "region.min",
+            self.region.min.max_element(),
+            "must be finite and within ±MAX_COORDINATE",
+        )?;
+        InvalidValue::check(
+            within(self.region.max) && !self.region.max.cmplt(self.region.min).any(),
+            "region.max",
+            self.region.max.min_element(),
+            "must be finite, within ±MAX_COORDINATE and ≥ region.min on every axis",
+        )?;
+        self.lod.check_as("lod.near", "lod.far")?;
+        if let Some(t) = self.recycle_after {
+            InvalidValue::check(
+                t.is_finite() && t >= 0.0,
+                "recycle_after",
+                t,
+                "must be finite and ≥ 0",
+            )?;
         }
         // The ground single objects accept, but finite: a cloud's leaves always land.
         super::model::release::check_ground(ground, false)?;

@@ -369,23 +369,25 @@ pub(crate) fn trajectory(
     duration: f64,
     method: Integrator,
 ) -> Result<Vec<OdeState>, FallError> {
-    let invalid = |field, value: f64, reason| {
-        FallError::Invalid(InvalidValue {
-            field,
-            value: value as f32,
-            reason,
-        })
-    };
-    if !(dt.is_finite() && dt > 0.0) {
-        return Err(invalid("dt", dt, "must be finite and > 0"));
-    }
-    if !(duration.is_finite() && duration >= 0.0) {
-        return Err(invalid("duration", duration, "must be finite and ≥ 0"));
-    }
+    InvalidValue::check(
+        dt.is_finite() && dt > 0.0,
+        "dt",
+        dt as f32,
+        "must be finite and > 0",
+    )?;
+    InvalidValue::check(
+        duration.is_finite() && duration >= 0.0,
+        "duration",
+        duration as f32,
+        "must be finite and ≥ 0",
+    )?;
     let steps = (duration / dt).round();
-    if steps > TanabeKaneko::MAX_TRAJECTORY_STEPS as f64 {
-        return Err(invalid("dt", dt, "duration / dt exceeds 2^22 steps"));
-    }
+    InvalidValue::check(
+        steps <= TanabeKaneko::MAX_TRAJECTORY_STEPS as f64,
+        "dt",
+        dt as f32,
+        "duration / dt exceeds 2^22 steps",
+    )?;
     let n = steps as usize;
     let mut out = Vec::with_capacity(n + 1);
     let mut s = state;

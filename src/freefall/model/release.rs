@@ -44,38 +44,30 @@ impl FallRelease {
     /// [`FallPlugin`]: crate::freefall::FallPlugin
     /// [`FallSettings::ground_height`]: crate::freefall::FallSettings::ground_height
     pub fn validate(&self) -> Result<(), FallError> {
-        let invalid = |field, value, reason| {
-            FallError::Invalid(InvalidValue {
-                field,
-                value,
-                reason,
-            })
-        };
         if let Some(value) = crate::guard::bad_position(self.position) {
-            return Err(invalid(
+            InvalidValue::check(
+                false,
                 "release.position",
                 value,
                 crate::guard::POSITION_REASON,
-            ));
+            )?;
         }
         check_ground(self.ground, true)?;
-        if let Some(q) = self.rotation
-            && crate::guard::unit_quat(q).is_none()
-        {
-            return Err(invalid(
+        if let Some(q) = self.rotation {
+            InvalidValue::check(
+                crate::guard::unit_quat(q).is_some(),
                 "release.rotation",
                 q.length(),
                 "must be a finite, non-zero quaternion",
-            ));
+            )?;
         }
         let speed = self.velocity.abs().max_element();
-        if speed.is_nan() || speed > FallRelease::MAX_SPEED {
-            return Err(invalid(
-                "release.velocity",
-                speed,
-                "must be finite and within ±1e4 m/s",
-            ));
-        }
+        InvalidValue::check(
+            !speed.is_nan() && speed <= FallRelease::MAX_SPEED,
+            "release.velocity",
+            speed,
+            "must be finite and within ±1e4 m/s",
+        )?;
         Ok(())
     }
 }
