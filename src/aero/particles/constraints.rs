@@ -48,7 +48,7 @@ pub(super) fn project_distances(
         let e = delta * (1.0 / length);
         let w = inertia.product(a, e, e) + inertia.product(b, e, e);
         let alpha = compliance / (h * h);
-        if !(w + alpha > 0.0) {
+        if w + alpha <= 0.0 || (w + alpha).is_nan() {
             continue;
         }
         let dl = (rest - length - alpha * *lambda) / (w + alpha);

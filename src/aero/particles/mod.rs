@@ -29,9 +29,9 @@ pub enum Pinning {
 /// smoothing length to the flapping flag's drag and waves (docs/aero.md).
 const ADDED_MASS_SHARE: f32 = 0.3;
 
-/// In-plane shear stiffness G t, N/m per radian: small, as a fabric shears (and wrinkles) under
-/// its own weight; a hanging flag hangs by shearing.
-const SHEAR_STIFFNESS: f32 = 0.05;
+/// In-plane shear stiffness G t, N/m per radian: a loosely woven fabric's at small shear
+/// (Kawabata's G, about 1–50 N/m); low enough that a flag hangs from its pole by shearing.
+const SHEAR_STIFFNESS: f32 = 2.0;
 
 /// Bending stiffness B, N·m: a flag cloth's (Kawabata: 0.05–0.2 gf·cm²/cm, 5e-6–2e-5 N·m).
 const BENDING_STIFFNESS: f32 = 2e-5;
@@ -164,8 +164,8 @@ impl ParticleCloth {
         let (rows, columns) = (grid.rows, grid.columns);
         let n = rows * columns;
         // Checked on what the solver divides by: the node mass, in f64 so no product overflows.
-        let node_mass = f64::from(areal_density) * f64::from(grid.width) * f64::from(grid.height)
-            / n as f64;
+        let node_mass =
+            f64::from(areal_density) * f64::from(grid.width) * f64::from(grid.height) / n as f64;
         InvalidValue::check(
             (MIN_NODE_MASS..=MAX_NODE_MASS).contains(&node_mass),
             "areal_density",
@@ -196,9 +196,12 @@ impl ParticleCloth {
             .iter()
             .map(|a| Some(per_area * a).filter(|m| m.is_finite()).unwrap_or(0.0))
             .collect();
-        let beta = added_mass.iter().map(|m_a| m_a / (node_mass + m_a)).collect();
+        let beta = added_mass
+            .iter()
+            .map(|m_a| m_a / (node_mass + m_a))
+            .collect();
         let pinned = |i: usize| match pinning {
-            Pinning::PoleColumn => i % columns == 0,
+            Pinning::PoleColumn => i.is_multiple_of(columns),
             Pinning::TopRow => i < columns,
         };
         let inverse_mass = (0..n)
@@ -387,7 +390,7 @@ impl ParticleCloth {
                 self.loads();
                 worst = worst.max(self.substep(h, gravity));
             }
-            if !(worst <= STRETCH_TOLERANCE) {
+            if worst > STRETCH_TOLERANCE || worst.is_nan() {
                 self.parts = (parts * 2).min(most);
             } else if worst < 0.25 * STRETCH_TOLERANCE {
                 self.parts = (parts / 2).max(1);

@@ -30,7 +30,8 @@ impl Screen {
     pub fn smooth(&self, values: &mut [f32], scratch: &mut Vec<f32>) {
         let (rows, columns) = (self.rows, self.columns);
         scratch.resize(2 * rows.max(columns), 0.0);
-        if let Some(a) = Line::new(0, 1, columns, self.along_rows, self.free_rows).factors(scratch) {
+        if let Some(a) = Line::new(0, 1, columns, self.along_rows, self.free_rows).factors(scratch)
+        {
             let (inverse, upper) = scratch.split_at(columns);
             for line in values.chunks_exact_mut(columns) {
                 line[0] *= inverse[0];
@@ -42,7 +43,9 @@ impl Screen {
                 }
             }
         }
-        if let Some(a) = Line::new(0, 1, rows, self.along_columns, self.free_columns).factors(scratch) {
+        if let Some(a) =
+            Line::new(0, 1, rows, self.along_columns, self.free_columns).factors(scratch)
+        {
             let (inverse, upper) = scratch.split_at(rows);
             for v in &mut values[..columns] {
                 *v *= inverse[0];
@@ -141,7 +144,11 @@ impl Line {
         }
         for j in 0..self.count {
             let left = if j > 0 { scratch[j - 1] } else { 0.0 };
-            let right = if j + 1 < self.count { scratch[j + 1] } else { 0.0 };
+            let right = if j + 1 < self.count {
+                scratch[j + 1]
+            } else {
+                0.0
+            };
             values[at(j)] = self.diagonal(j) * scratch[j] - self.a * (left + right);
         }
     }
@@ -171,9 +178,15 @@ mod tests {
         let a = 4.0;
         let held = (false, false);
         // A constant stays, to rounding.
-        assert!(line(&vec![2.5; n], a, held).iter().all(|x| (x - 2.5).abs() < 1e-5));
+        assert!(
+            line(&vec![2.5; n], a, held)
+                .iter()
+                .all(|x| (x - 2.5).abs() < 1e-5)
+        );
         // A grid-scale ripple (+1, −1, …) keeps about 1 / (1 + 4a) of itself in the middle.
-        let ripple: Vec<f32> = (0..n).map(|j| if j % 2 == 0 { 1.0 } else { -1.0 }).collect();
+        let ripple: Vec<f32> = (0..n)
+            .map(|j| if j % 2 == 0 { 1.0 } else { -1.0 })
+            .collect();
         let kept = line(&ripple, a, held)[n / 2].abs();
         assert!((kept - 1.0 / (1.0 + 4.0 * a)).abs() < 1e-3, "{kept}");
         // A wave as long as the line keeps nearly all: 1 / (1 + a (2 sin(k/2))²), k = 2π/n.
@@ -182,14 +195,26 @@ mod tests {
         let out = line(&wave, a, held);
         let expected = 1.0 / (1.0 + a * (2.0 * (k / 2.0).sin()).powi(2));
         assert!(expected > 0.9);
-        assert!((out[n / 2] / wave[n / 2] - expected).abs() < 0.05, "{}", out[n / 2]);
+        assert!(
+            (out[n / 2] / wave[n / 2] - expected).abs() < 0.05,
+            "{}",
+            out[n / 2]
+        );
         // Between held ends any load keeps its total (the ends pass nothing on).
         let load: Vec<f32> = (0..n).map(|j| ((j * 7919) % 13) as f32 - 6.0).collect();
-        let (before, after) = (load.iter().sum::<f32>(), line(&load, a, held).iter().sum::<f32>());
+        let (before, after) = (
+            load.iter().sum::<f32>(),
+            line(&load, a, held).iter().sum::<f32>(),
+        );
         assert!((before - after).abs() < 1e-3, "{before} vs {after}");
         // A free end: a constant load falls toward it, and stays far from it.
         let out = line(&vec![1.0; n], a, (false, true));
-        assert!(out[n - 1] < 0.5 && out[0] > 0.99, "{} {}", out[n - 1], out[0]);
+        assert!(
+            out[n - 1] < 0.5 && out[0] > 0.99,
+            "{} {}",
+            out[n - 1],
+            out[0]
+        );
         assert!(out.windows(2).all(|w| w[1] <= w[0] + 1e-6));
     }
 

@@ -49,7 +49,12 @@ impl ParticleCloth {
             reach: &self.reach,
         };
         let screen = self.screen();
-        smoothed_pressure(loads, &screen, &mut self.pressure_scratch, &mut self.pressure);
+        smoothed_pressure(
+            loads,
+            &screen,
+            &mut self.pressure_scratch,
+            &mut self.pressure,
+        );
         for i in 0..self.positions.len() {
             let (n, u, p) = (self.normals[i], self.wind[i], self.pressure[i]);
             let (c, area) = (self.friction[i], self.areas[i]);

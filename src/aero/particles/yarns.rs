@@ -72,7 +72,9 @@ impl Yarns {
     /// The yarns of a `rows × columns` grid at `positions`, their rest lengths.
     pub(super) fn new(rows: usize, columns: usize, positions: &[Vec3]) -> Self {
         let mut ends = Vec::new();
-        for (count, stride, lanes, step) in [(columns, 1, rows, columns), (rows, columns, columns, 1)] {
+        for (count, stride, lanes, step) in
+            [(columns, 1, rows, columns), (rows, columns, columns, 1)]
+        {
             for lane in 0..lanes {
                 let first = lane * step;
                 ends.extend((0..count - 1).map(|j| {
@@ -88,7 +90,11 @@ impl Yarns {
         let count = ends.len();
         let families = [
             (0, (columns - 1) as u32, rows as u32),
-            ((rows * (columns - 1)) as u32, (rows - 1) as u32, columns as u32),
+            (
+                (rows * (columns - 1)) as u32,
+                (rows - 1) as u32,
+                columns as u32,
+            ),
         ];
         Self {
             rows,
@@ -157,7 +163,11 @@ impl Yarns {
             for j in 0..length {
                 for line in 0..count {
                     let i = first + line * length + j;
-                    let below = if j > 0 { self.off[i - 1] * self.upper[i - 1] } else { 0.0 };
+                    let below = if j > 0 {
+                        self.off[i - 1] * self.upper[i - 1]
+                    } else {
+                        0.0
+                    };
                     let pivot = self.diagonal[i] - below;
                     self.inverse_pivot[i] = 1.0 / pivot;
                     self.upper[i] = self.off[i] / pivot;
@@ -220,7 +230,8 @@ impl Yarns {
             for j in 1..length {
                 for line in 0..count {
                     let i = at(line, j);
-                    self.z[i] = (self.r[i] - self.off[i - 1] * self.z[i - 1]) * self.inverse_pivot[i];
+                    self.z[i] =
+                        (self.r[i] - self.off[i - 1] * self.z[i - 1]) * self.inverse_pivot[i];
                 }
             }
             for j in (0..length - 1).rev() {
