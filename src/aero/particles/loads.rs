@@ -1,5 +1,5 @@
-//! The air's load on a particle cloth each substep: each node's normal, its pressure rates
-//! (smoothed and local) and its skin-friction rate.
+//! The air's load on a particle cloth each substep: each node's normal, its pressure's force
+//! rates (smoothed and local) and its skin-friction rate.
 
 use bevy::math::Vec3;
 
@@ -9,8 +9,7 @@ use super::ParticleCloth;
 /// 0.074 Re^−1/5, at the Re ≈ 10⁶ of a flag a metre or two long in a breeze.
 const SKIN_FRICTION: f32 = 0.005;
 
-/// Largest pressure or friction rate: keeps every rate, and its product with a finite
-/// velocity, finite.
+/// Largest force rate, kg/s: keeps every rate, and its product with a finite velocity, finite.
 const MOST_RATE: f32 = 1e30;
 
 impl ParticleCloth {
@@ -30,11 +29,12 @@ impl ParticleCloth {
         }));
     }
 
-    /// The pressure rates and the skin-friction rate of every node, from the velocities,
-    /// normals and wind at the start of the substep. With w = v_rel · n = |v_rel| sin α the
-    /// face law's normal share p = ½ ρ |v_rel|² (C_D sin²α + C_L sin α cos²α) sgn w is
-    /// (l + k) w: l = ½ ρ |v_rel| C_L cos²α, smoothed over the sheet, and
-    /// k = ½ ρ |v_rel| C_D sin α, local. Skin friction c = ρ C_f A |v_t − u_t| (both sides).
+    /// The force rates of the pressure and the skin-friction rate of every node, from the
+    /// velocities, normals and wind at the start of the substep. With w = v_rel · n =
+    /// |v_rel| sin α the face law's normal share A p = ½ ρ A |v_rel|² (C_D sin²α +
+    /// C_L sin α cos²α) sgn w is (L + K) w: L = ½ ρ A |v_rel| C_L cos²α, smoothed over the
+    /// sheet, and K = ½ ρ A |v_rel| C_D sin α, local (A the node's area). Skin friction
+    /// c = ρ C_f A |v_t − u_t| (both sides).
     pub(super) fn loads(&mut self) {
         let c = self.coefficients;
         for i in 0..self.positions.len() {
@@ -47,13 +47,14 @@ impl ParticleCloth {
             } else {
                 0.0
             };
+            let area = self.areas[i];
             let rate = |slope: f32| {
-                let d = (0.5 * c.density * speed * slope).min(MOST_RATE);
+                let d = (0.5 * c.density * area * speed * slope).min(MOST_RATE);
                 if d.is_finite() { d } else { 0.0 }
             };
             self.lift_rate[i] = rate(c.lift * (1.0 - sine * sine));
             self.drag_rate[i] = rate(c.drag * sine);
-            let f = c.density * SKIN_FRICTION * self.areas[i] * (rel - n * along).length();
+            let f = c.density * SKIN_FRICTION * area * (rel - n * along).length();
             self.friction[i] = if f.is_finite() { f.min(MOST_RATE) } else { 0.0 };
         }
     }

@@ -31,7 +31,7 @@ const ADDED_MASS_SHARE: f32 = 0.3;
 
 /// In-plane shear stiffness G t, N/m per radian: a loosely woven fabric's at small shear
 /// (Kawabata's G, about 1–50 N/m); low enough that a flag hangs from its pole by shearing.
-const SHEAR_STIFFNESS: f32 = 2.0;
+const SHEAR_STIFFNESS: f32 = 1.5;
 
 /// Bending stiffness B, N·m: a flag cloth's (Kawabata: 0.05–0.2 gf·cm²/cm, 5e-6–2e-5 N·m).
 const BENDING_STIFFNESS: f32 = 2e-5;
@@ -58,13 +58,13 @@ const MAX_NODE_MASS: f64 = 1e9;
 ///    v_rel = v − u, α the incidence, C_N = C_D sin²α + C_L sin α cos²α (the face law's share
 ///    along the normal), written p = (l + k) w with w = v_rel · n and the rates
 ///    l = ½ ρ |v_rel| C_L cos²α (smoothed over the sheet) and k = ½ ρ |v_rel| C_D sin α (local),
-///    frozen over the substep: p = √l S(√l w') + k w' with w' the velocity at the end of the
-///    substep and S a screened filter over a quarter of the smaller side (in potential flow
-///    the pressure on a wave of wavenumber k falls as 1/|k|; past the edges across the yarns
-///    from the pins it falls to zero). Both shares only take energy out of the motion relative
-///    to the air.
+///    frozen over the substep: with L = A l and K = A k (A the node's area) the node's force is
+///    A p = √L S(√L w') + K w', w' the velocity at the end of the substep and S a screened
+///    filter over a quarter of the smaller side (in potential flow the pressure on a wave of
+///    wavenumber k falls as 1/|k|; past the sides across the yarns from the pins it falls to
+///    zero). Both shares only take energy out of the motion relative to the air.
 /// 2. **Skin friction** ½ ρ C_f |v_t − u_t| (v_t − u_t) on each side, along the sheet, implicit.
-/// 3. **Velocities**: M (v' − v) = h (m g − A p n − c (v'_t − u_t)), A the node's area.
+/// 3. **Velocities**: M (v' − v) = h (m g − A p n − c (v'_t − u_t)).
 /// 4. **Constraints** on x + h v', each projected with the same inverse inertia W = M⁻¹:
 ///    bending (x_a − 2 x_b + x_c = 0 along rows and columns, compliance s³ / (B w)) and shear
 ///    (both diagonals of every cell, compliance from G t) by XPBD; the yarns (every row and
@@ -107,9 +107,9 @@ pub struct ParticleCloth {
     /// velocity are expressed with.
     normals: Vec<Vec3>,
     fresh_normals: Vec<Vec3>,
-    /// Per node: the smoothed and local pressure rates (kg/(m² s)), the skin-friction rate
+    /// Per node: the pressure's smoothed and local force rates and the skin-friction rate
     /// (kg/s), the normal velocity relative to the air before the pressure (m/s), the reach
-    /// h A / (m + m_a) and the pressure of the substep (Pa).
+    /// h / (m + m_a) and the pressure's force of the substep (N).
     lift_rate: Vec<f32>,
     drag_rate: Vec<f32>,
     friction: Vec<f32>,

@@ -1,15 +1,15 @@
-//! The air's pressure on a particle cloth over a substep, implicit: p = √l ∘ S(√l ∘ w') + k ∘ w'
-//! with w' the nodes' normal velocities relative to the air at the end of the substep, l ≥ 0
-//! and k ≥ 0 the smoothed and local pressure rates and S the screened filter of
-//! [`Screen`]. A free node's w' = w* − c p, c = h A / (m + m_a) (0 where pinned), so
-//! w' = g ∘ (w* − c ∘ √l ∘ y) with g = 1 / (1 + c k) and y = S(√l ∘ w'):
-//! (T + diag(c g l)) y = √l ∘ g ∘ w*, T = S⁻¹, a symmetric positive definite system solved by
-//! conjugate gradients preconditioned with S.
+//! The air's pressure on a particle cloth over a substep, implicit, as the force it puts on each
+//! node along its normal: F = √L ∘ S(√L ∘ w') + K ∘ w', with w' the nodes' normal velocities
+//! relative to the air at the end of the substep, L ≥ 0 and K ≥ 0 the smoothed and local force
+//! rates (pressure rate × area) and S the screened filter of [`Screen`]. A free node's
+//! w' = w* − c F, c = h / (m + m_a) (0 where pinned), so w' = g ∘ (w* − c ∘ √L ∘ y) with
+//! g = 1 / (1 + c K) and y = S(√L ∘ w'): (T + diag(c g L)) y = √L ∘ g ∘ w*, T = S⁻¹, a symmetric
+//! positive definite system solved by conjugate gradients preconditioned with S.
 //!
 //! Every conjugate-gradient iterate y (from zero) leaves a residual orthogonal to itself, so
-//! the smoothed pressure's power on the motion relative to the air is −A yᵀ T y and the local
-//! one's −A Σ k w'²: never positive, however few iterations are run. In still air the air only
-//! takes energy out.
+//! the smoothed force's power on the motion relative to the air is −yᵀ T y and the local one's
+//! −Σ K w'²: never positive, however few iterations are run. In still air the air only takes
+//! energy out.
 
 use super::screen::Screen;
 
@@ -32,8 +32,8 @@ pub(super) struct PressureScratch {
     line: Vec<f32>,
 }
 
-/// The nodes' pressure rates (smoothed l, local k), their normal velocities relative to the
-/// air before the pressure (w*) and their reach (c).
+/// The nodes' force rates (smoothed L, local K), their normal velocities relative to the air
+/// before the pressure (w*) and their reach (c).
 pub(super) struct Loads<'a> {
     pub lift: &'a [f32],
     pub drag: &'a [f32],
@@ -41,13 +41,13 @@ pub(super) struct Loads<'a> {
     pub reach: &'a [f32],
 }
 
-/// The pressure of every node (Pa, positive pushing against its normal) into `pressure`,
+/// The pressure's force on every node (N, positive pushing against its normal) into `force`,
 /// smoothed by `screen`.
 pub(super) fn smoothed_pressure(
     loads: Loads,
     screen: &Screen,
     s: &mut PressureScratch,
-    pressure: &mut [f32],
+    force: &mut [f32],
 ) {
     let Loads {
         lift,
@@ -102,6 +102,6 @@ pub(super) fn smoothed_pressure(
         let smoothed = lift[i].sqrt() * s.y[i];
         let after = s.g[i] * (relative[i] - reach[i] * smoothed);
         let value = smoothed + drag[i] * after;
-        pressure[i] = if value.is_finite() { value } else { 0.0 };
+        force[i] = if value.is_finite() { value } else { 0.0 };
     }
 }

@@ -40,7 +40,7 @@ impl ParticleCloth {
             let normal = v_n + h * g_n * m / (m + m_a);
             self.velocities[i] = along + n * normal;
             self.relative[i] = normal - u_n;
-            self.reach[i] = h * self.areas[i] / (m + m_a);
+            self.reach[i] = h / (m + m_a);
         }
         let loads = Loads {
             lift: &self.lift_rate,
@@ -57,13 +57,13 @@ impl ParticleCloth {
         );
         for i in 0..self.positions.len() {
             let (n, u, p) = (self.normals[i], self.wind[i], self.pressure[i]);
-            let (c, area) = (self.friction[i], self.areas[i]);
+            let c = self.friction[i];
             let u_t = u - n * u.dot(n);
             let v = self.velocities[i] - n * (self.reach[i] * p);
             let pinned = self.inverse_mass[i] == 0.0;
             // A held node's push goes into the pin (and into the force).
             let v_t = if pinned { Vec3::ZERO } else { v - n * v.dot(n) };
-            let force = -n * (area * p) + c * (u_t - v_t);
+            let force = -n * p + c * (u_t - v_t);
             if force.is_finite() {
                 self.force += h * force;
             }
