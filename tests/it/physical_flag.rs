@@ -165,11 +165,11 @@ fn it_flaps_at_the_strouhal_number_of_flags_and_swimmers() {
 
 #[test]
 fn waves_run_from_the_pole_to_the_free_edge_at_about_the_wind_speed() {
-    // Flags: 0.5–1.0 U (Alben 2021; Shelley & Zhang 2011). Measured 0.58–0.70 U (short of the
-    // 0.7–1.0 U aimed at: docs/aero.md).
+    // Flags: 0.5–1.0 U (Alben 2021; Shelley & Zhang 2011). Aimed at 0.7–1.0 U; measured
+    // 0.69–0.96 U (the 24-row flag at 4 m/s 0.69: docs/aero.md), so checked within 0.65–1.0.
     for r in flapping() {
         let c = r.stats.wave_speed / r.speed;
-        assert!((0.5..=1.0).contains(&c), "{}", describe(r));
+        assert!((0.65..=1.0).contains(&c), "{}", describe(r));
     }
 }
 
@@ -191,9 +191,9 @@ fn its_waves_are_about_twice_its_length() {
 #[test]
 fn its_drag_is_the_free_flag_drag_of_the_wind_code() {
     // AS/NZS 1170.2 Appendix F: C = 0.05 + 0.7 (m / (ρ c)) (A / c²)^−1.25 on ½ ρ U² A, with m
-    // the mass per area, c the flag's height and A its area: about 0.10 here. Within ±35 %
-    // (measured 0.67–1.30 of it: the drooping flag at 4 m/s drags more, at 12 m/s less; 0.7–1.1
-    // was aimed at).
+    // the mass per area, c the flag's height and A its area: about 0.10 here. Aimed at 0.7–1.1
+    // of it; measured 0.67–1.29 (the drooping flag at 4 m/s drags more, at 12 m/s less), so
+    // checked within 0.65–1.35.
     let rho = AeroCoefficients::AIR_DENSITY;
     let area = WIDTH * HEIGHT;
     let c = 0.05 + 0.7 * (AREAL_DENSITY / (rho * HEIGHT)) * (area / (HEIGHT * HEIGHT)).powf(-1.25);
@@ -227,13 +227,15 @@ fn it_flaps_faster_in_stronger_wind() {
 
 #[test]
 fn it_hangs_in_light_air_and_flies_in_a_fresh_breeze() {
-    // Beaufort 1 (1.5 m/s): flags hang. Measured 62° below the horizontal, but the free edge
-    // swings 0.33 L (0.15 L was aimed at: docs/aero.md).
+    // Beaufort 1 (1.5 m/s): flags hang, at least 60° below the horizontal (measured 61.9°; 60.1°
+    // at 48 rows), but the free edge swings 0.31 L (0.34 L at 48 rows), not the 0.15 L aimed at
+    // (docs/aero.md): checked within 0.4 L.
     let light = find(24, 1.5, 1.0 / 50.0);
     assert!(light.angle >= 60.0, "{}", describe(light));
     assert!(light.swing <= 0.4, "{}", describe(light));
-    // Beaufort 5 (8 m/s): flags fly and flap. Measured 9–11°, f A / U 0.12–0.19, swing
-    // 0.36–0.52 L (0.2–0.4 and 0.1–0.4 L were aimed at).
+    // Beaufort 5 (8 m/s): flags fly and flap, at most 30° below the horizontal (measured
+    // 10–11°). Aimed at f A / U 0.2–0.4 and a swing of 0.1–0.4 L; measured f A / U 0.10–0.15 and
+    // 0.34–0.46 L, so checked within 0.1–0.4 and 0.1–0.6 L.
     for rows in [24, 48] {
         let fresh = find(rows, 8.0, 1.0 / 50.0);
         let st = fresh.stats.strouhal(WIDTH, 8.0);
@@ -247,11 +249,14 @@ fn it_hangs_in_light_air_and_flies_in_a_fresh_breeze() {
 
 #[test]
 fn its_motion_is_the_same_on_any_grid() {
-    // 24 rows against 48 (at 50 steps a second; any other rate moves it through the same
-    // substeps, below). Where it flaps steadily (8 and 12 m/s) the frequency is within 5 % and
-    // the drag within 15 %; the swing over 10 s scatters more (measured 3–32 %). At 4 m/s the
-    // drooping flag flaps in one of two modes over 10 s (1.0 Hz with waves 1.8 L long, or
-    // 1.3 Hz with waves 1.2 L), which this does not check: docs/aero.md.
+    // 24 rows against 48 (at 50 steps a second; any other rate of 50–200 a second moves it
+    // through the same substeps and to the same place: `frames_are_cut_into_whole_milliseconds`).
+    // Aimed at: frequency within 5 %, swing and drag within 15 % at 4–12 m/s. Measured: drag
+    // within 3 % at every speed; frequency within 2 % at 8 and 12 m/s but 12 % at 4 m/s (the
+    // drooping flag flaps in one of two modes over 10 s, about 1.0 Hz with waves 1.8 L long or
+    // 1.3 Hz with waves 1.2 L: docs/aero.md); swing within 1 % and 8 % at 4 and 12 m/s but 25 %
+    // at 8 m/s (a swing over 10 s of a chaotic flapping). Checked: drag 15 %, frequency 5 % (15 %
+    // at 4 m/s), swing 30 %.
     for speed in SPEEDS {
         let (fine, coarse) = (find(48, speed, 1.0 / 50.0), find(24, speed, 1.0 / 50.0));
         let off = |a: f32, b: f32| (a / b - 1.0).abs();
@@ -261,16 +266,14 @@ fn its_motion_is_the_same_on_any_grid() {
             100.0 * (coarse.swing / fine.swing - 1.0),
             100.0 * (coarse.drag / fine.drag - 1.0)
         );
-        if speed < 8.0 {
-            continue;
-        }
         let report = format!("{}\n{}", describe(fine), describe(coarse));
+        let frequency = if speed < 8.0 { 0.15 } else { 0.05 };
         assert!(
-            off(coarse.stats.frequency, fine.stats.frequency) <= 0.05,
+            off(coarse.stats.frequency, fine.stats.frequency) <= frequency,
             "{report}"
         );
         assert!(off(coarse.drag, fine.drag) <= 0.15, "{report}");
-        assert!(off(coarse.swing, fine.swing) <= 0.5, "{report}");
+        assert!(off(coarse.swing, fine.swing) <= 0.3, "{report}");
     }
 }
 
@@ -332,17 +335,9 @@ fn without_gravity_its_motion_scales_with_the_wind() {
     assert!((3.4..=4.6).contains(&(fast.drag / slow.drag)), "{report}");
 }
 
-#[test]
-fn its_yarns_hold_from_a_breeze_to_a_storm() {
-    // The longest yarn edge's stretch, 99th percentile over the frames at 60 steps a second:
-    // 16 rows over 10 s, 64 rows over 2 s (the substeps are cut finer as soon as an edge is
-    // 2 % long, so the percentile is the same over 10 s: docs/aero.md). At most 5 %.
-    let cases = [
-        (16, 1.5, (SETTLE, 10.0)),
-        (16, 30.0, (SETTLE, 10.0)),
-        (64, 1.5, (1.0, 2.0)),
-        (64, 30.0, (1.0, 2.0)),
-    ];
+/// The longest yarn edge's stretch, 99th percentile over the frames at 60 steps a second, of
+/// each (rows, wind, (settle, window)) case: at most 5 %.
+fn yarns_hold(cases: &[(usize, f32, (f32, f32))]) {
     let runs: Vec<Run> = std::thread::scope(|scope| {
         let handles: Vec<_> = cases
             .iter()
@@ -356,4 +351,26 @@ fn its_yarns_hold_from_a_breeze_to_a_storm() {
         println!("{}", describe(r));
         assert!(r.stretch <= 0.05, "{}", describe(r));
     }
+}
+
+#[test]
+fn its_yarns_hold_from_a_breeze_to_a_storm() {
+    // 16 rows over 10 s, 64 rows over 2 s (the substeps are cut finer as soon as an edge is 2 %
+    // long, so the percentile is the same over 10 s: measured 2.0 % at 1.5 m/s and 2.0–2.5 % at
+    // 30 m/s, `the_finest_yarns_hold_for_ten_seconds`).
+    yarns_hold(&[
+        (16, 1.5, (SETTLE, 10.0)),
+        (16, 30.0, (SETTLE, 10.0)),
+        (64, 1.5, (1.0, 2.0)),
+        (64, 30.0, (1.0, 2.0)),
+    ]);
+}
+
+/// The 64-row flag of `its_yarns_hold_from_a_breeze_to_a_storm` over the full 10 s (a few
+/// minutes in a debug build):
+/// `cargo test --release --all-features --test it -- --ignored finest_yarns`.
+#[test]
+#[ignore = "minutes in a debug build; its_yarns_hold_from_a_breeze_to_a_storm checks 2 s"]
+fn the_finest_yarns_hold_for_ten_seconds() {
+    yarns_hold(&[(64, 1.5, (SETTLE, 10.0)), (64, 30.0, (SETTLE, 10.0))]);
 }
