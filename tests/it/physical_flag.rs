@@ -356,7 +356,7 @@ fn yarns_hold(cases: &[(usize, f32, (f32, f32))]) {
 #[test]
 fn its_yarns_hold_from_a_breeze_to_a_storm() {
     // 16 rows over 10 s, 64 rows over 2 s (the substeps are cut finer as soon as an edge is 2 %
-    // long, so the percentile is the same over 10 s: measured 2.0 % at 1.5 m/s and 2.0–2.5 % at
+    // long, so the percentile is the same over 10 s: measured 1.97 % at 1.5 m/s and 1.98 % at
     // 30 m/s, `the_finest_yarns_hold_for_ten_seconds`).
     yarns_hold(&[
         (16, 1.5, (SETTLE, 10.0)),
@@ -366,8 +366,8 @@ fn its_yarns_hold_from_a_breeze_to_a_storm() {
     ]);
 }
 
-/// The 64-row flag of `its_yarns_hold_from_a_breeze_to_a_storm` over the full 10 s (a few
-/// minutes in a debug build):
+/// The 64-row flag of `its_yarns_hold_from_a_breeze_to_a_storm` over the full 10 s (12 minutes
+/// in a debug build on a 2-vCPU machine):
 /// `cargo test --release --all-features --test it -- --ignored finest_yarns`.
 #[test]
 #[ignore = "minutes in a debug build; its_yarns_hold_from_a_breeze_to_a_storm checks 2 s"]
