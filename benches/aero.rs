@@ -1,6 +1,7 @@
 //! Aero costs: `face_force` over 100 000 faces; one fixed step of a physically driven leaf (a
 //! `RigidPlate` of 2 × 2 faces) against the procedural `FallingObject` leaf in the same wind;
-//! one step of the same flag grid as a P-descriptor `ClothSim` and as a `ParticleCloth`.
+//! one step of a flag as a P-descriptor `ClothSim` (24 × 16 and 36 × 24 nodes) and as a
+//! `ParticleCloth` (36 × 24 and 72 × 48).
 //!
 //! Run: `cargo bench --bench aero`. Figures are in the README's Performance section.
 
@@ -99,18 +100,20 @@ fn faces(c: &mut Criterion) {
             BatchSize::SmallInput,
         )
     });
-    // A flag of 24 × 16 nodes and one of 36 × 24: P-descriptor (advance + rebuild) against
-    // the particle cloth of the same grid.
+    // A flag of 24 × 16 nodes and one of 36 × 24 as a P-descriptor cloth (advance + rebuild);
+    // the particle cloth of 36 × 24 and 72 × 48 nodes (1.5 × 1 m, 0.15 kg/m²), each step
+    // measured on a flag already flapping (a second of the same wind first).
     let params = ClothPreset::FlagFlappingFrozen.params();
     let gravity = Vec3::new(0.0, -9.81, 0.0);
+    let grid = |rows: usize, columns: usize| ClothGrid {
+        rows,
+        columns,
+        width: 1.5,
+        height: 1.0,
+    };
     for (rows, columns) in [(16, 24), (24, 36)] {
-        let grid = ClothGrid {
-            rows,
-            columns,
-            width: 1.5,
-            height: 1.0,
-        };
-        let mut procedural = ClothSim::new(grid, params, ClothAttachment::Pole).unwrap();
+        let mut procedural =
+            ClothSim::new(grid(rows, columns), params, ClothAttachment::Pole).unwrap();
         group.bench_function(format!("flag_step_{columns}x{rows}/procedural"), |b| {
             b.iter(|| {
                 procedural.advance(DT, params.wind_steps_per_frame);
@@ -118,16 +121,24 @@ fn faces(c: &mut Criterion) {
                 black_box(procedural.positions()[0])
             })
         });
-        let mut physical =
-            ParticleCloth::new(grid, 0.15, AeroCoefficients::default(), Pinning::PoleColumn)
-                .unwrap();
+    }
+    let blowing = |p: Vec3| wind.velocity(p + Vec3::new(0.0, 5.0, 0.0));
+    for (rows, columns) in [(24, 36), (48, 72)] {
+        let mut physical = ParticleCloth::new(
+            grid(rows, columns),
+            0.15,
+            AeroCoefficients::default(),
+            Pinning::PoleColumn,
+        )
+        .unwrap();
+        for _ in 0..60 {
+            physical.step(DT, gravity, &blowing);
+        }
         group.bench_function(
             format!("flag_step_{columns}x{rows}/physical_particles"),
             |b| {
                 b.iter(|| {
-                    physical.step(DT, gravity, &|p| {
-                        wind.velocity(p + Vec3::new(0.0, 5.0, 0.0))
-                    });
+                    physical.step(DT, gravity, &blowing);
                     black_box(physical.positions()[0])
                 })
             },

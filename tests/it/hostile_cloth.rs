@@ -1,9 +1,11 @@
-//! Hostile input, round 4, items 10 and 11: a particle cloth's steps of any accepted length, and
-//! the lightest nodes its constructor accepts.
+//! Hostile input for the particle cloth: steps of any accepted length, the lightest nodes its
+//! constructor accepts, gales and gravities far beyond nature, and a randomised sweep of
+//! cloths let go in still air, none of which may gain energy.
 
 use bevy::prelude::*;
 use bevy_windfall::aero::{AeroCoefficients, ParticleCloth, Pinning};
 use bevy_windfall::cloth::ClothGrid;
+use proptest::test_runner::RngSeed;
 
 const G: Vec3 = Vec3::new(0.0, -9.81, 0.0);
 
@@ -109,49 +111,9 @@ fn the_lightest_nodes_are_refused_or_stay_finite() {
     }
 }
 
-/// The largest relative stretch of a structural edge (along the yarns and between them).
-fn stretch(cloth: &ParticleCloth, grid: ClothGrid) -> f32 {
-    let p = cloth.positions();
-    let (rows, columns) = (grid.rows, grid.columns);
-    let dx = grid.width / (columns - 1) as f32;
-    let dy = if rows > 1 {
-        grid.height / (rows - 1) as f32
-    } else {
-        1.0
-    };
-    let mut most = 0.0f32;
-    for k in 0..rows {
-        for j in 0..columns {
-            let i = k * columns + j;
-            if j + 1 < columns {
-                most = most.max(p[i].distance(p[i + 1]) / dx - 1.0);
-            }
-            if k + 1 < rows {
-                most = most.max(p[i].distance(p[i + columns]) / dy - 1.0);
-            }
-        }
-    }
-    most
-}
-
-/// The air a node carries across the sheet, kg: an eighth of a flat plate's ρ π c / 4 per area
-/// (c the smaller side), as `ParticleCloth` documents it.
-fn added_mass(grid: ClothGrid) -> f32 {
-    let per_area = 0.125
-        * AeroCoefficients::AIR_DENSITY
-        * std::f32::consts::FRAC_PI_4
-        * grid.width.min(grid.height);
-    per_area * grid.width * grid.height / (grid.rows * grid.columns) as f32
-}
-
 /// A 1.2 × 0.8 m cloth of `rows × columns` nodes of `node_mass` kg, pinned by its top row or
-/// its pole column, and the wind `speed` m/s at `angle` rad across its plane.
-fn random_cloth(
-    (rows, columns): (usize, usize),
-    node_mass: f32,
-    top_row: bool,
-    (speed, angle): (f32, f32),
-) -> (ClothGrid, ParticleCloth, Vec3) {
+/// its pole column.
+fn cloth(rows: usize, columns: usize, node_mass: f32, top_row: bool) -> ParticleCloth {
     let grid = ClothGrid {
         rows,
         columns,
@@ -164,85 +126,159 @@ fn random_cloth(
     } else {
         Pinning::PoleColumn
     };
-    let cloth = ParticleCloth::new(grid, areal, AeroCoefficients::default(), pinning).unwrap();
-    (
-        grid,
-        cloth,
-        speed * Vec3::new(angle.cos(), 0.0, angle.sin()),
-    )
+    ParticleCloth::new(grid, areal, AeroCoefficients::default(), pinning).unwrap()
+}
+
+/// A wind of 1e3 m/s and a gravity of 1e6 m/s², far beyond nature: the cloth stays finite and no
+/// yarn edge doubles (measured: at most 2.3 % long, the substeps cut up to 16 a millisecond).
+#[test]
+fn gales_and_gravities_beyond_nature_stretch_no_edge_double() {
+    let cases = [
+        (Vec3::new(1e3, 0.0, 30.0), G),
+        (Vec3::ZERO, Vec3::new(0.0, -1e6, 0.0)),
+        (Vec3::new(30.0, 0.0, 0.0), Vec3::new(3e5, -1e6, 2e5)),
+    ];
+    for (wind, gravity) in cases {
+        let mut flag = cloth(16, 24, 2e-3, false);
+        let mut worst = 0.0f32;
+        for _ in 0..20 {
+            flag.step(1.0 / 60.0, gravity, &|_| wind);
+            assert!(
+                flag.positions().iter().all(|p| p.is_finite()),
+                "{wind} {gravity}"
+            );
+            worst = worst.max(flag.max_strain());
+        }
+        println!(
+            "wind {wind}, gravity {gravity}: longest edge {:.1} % long",
+            100.0 * worst
+        );
+        assert!(worst < 1.0, "wind {wind}, gravity {gravity}: {worst}");
+    }
+}
+
+/// Frames of 0.1–0.25 s (hitches): the yarns stay within 10 % at 16 and 64 rows in a breeze and
+/// a storm (measured at most 1.6 %: every frame is simulated in millisecond substeps).
+#[test]
+fn long_frames_keep_the_yarns() {
+    let cases = [(16, 1.5), (16, 30.0), (64, 30.0)];
+    std::thread::scope(|scope| {
+        for (rows, speed) in cases {
+            scope.spawn(move || {
+                let mut flag = cloth(
+                    rows,
+                    rows * 3 / 2,
+                    0.15 * 0.96 / (rows * rows * 3 / 2) as f32,
+                    false,
+                );
+                let mut worst = 0.0f32;
+                for frame in 0..4 {
+                    let dt = 0.1 + 0.05 * frame as f32;
+                    flag.step(dt, G, &|_| Vec3::new(speed, 0.0, 0.0));
+                    worst = worst.max(flag.max_strain());
+                }
+                println!(
+                    "{rows} rows, {speed} m/s, frames 0.1–0.25 s: {:.1} %",
+                    100.0 * worst
+                );
+                assert!(worst <= 0.1, "{rows} rows in {speed} m/s: {worst}");
+            });
+        }
+    });
+}
+
+/// The seed of the energy sweep: `WINDFALL_SEED` if set, else the clock's; printed, so that a
+/// failing sweep can be run again.
+fn energy_sweep() -> proptest::prelude::ProptestConfig {
+    let seed = std::env::var("WINDFALL_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| {
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.as_nanos() as u64)
+        });
+    eprintln!("particle cloth energy sweep: seed {seed} (WINDFALL_SEED={seed} runs it again)");
+    proptest::prelude::ProptestConfig {
+        cases: 96,
+        rng_seed: RngSeed::Fixed(seed),
+        failure_persistence: None,
+        ..Default::default()
+    }
 }
 
 proptest::proptest! {
-    // A fixed seed: CI runs the same 64 cases each time (the wider random sweep behind the
-    // ranges below, 20 000 cloths, is in docs/testing.md).
-    #![proptest_config(proptest::prelude::ProptestConfig {
-        cases: 64,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(42),
-        ..Default::default()
-    })]
+    #![proptest_config(energy_sweep())]
 
-    /// Any grid, nodes of a gram to 100 g, wind up to a storm (35 m/s, up to 45° across the
-    /// cloth's plane), gravity up to 3 g and
-    /// any sequence of frame times from a microsecond to 1/30 s: the nodes stay finite and no
-    /// edge stretches more than 10 %; in still air, with frames up to 1/60 s, a cloth at least as
-    /// heavy as the air it carries gains no energy. What does not hold yet (lighter nodes,
-    /// longer frames) is measured in docs/testing.md.
+    /// Let go from rest in still air, no cloth gains energy (its nodes' kinetic and potential
+    /// energy and the kinetic energy of the air they carry) beyond 1 % of its weight (at no less
+    /// than 1 m/s²) times its size: nodes of 1e-5 to 0.1 kg, any grid from 2 × 2 to 64 × 96,
+    /// either pinning, gravity to 3 g, frames of 1 µs to 0.25 s (up to half a second of them).
     #[test]
-    fn particle_cloth_holds_for_any_grid_mass_wind_gravity_and_frames(
-        rows in 2usize..8,
-        columns in 2usize..10,
+    fn no_particle_cloth_gains_energy_in_still_air(
+        rows in 2usize..=64,
+        columns in 2usize..=96,
         // Log-uniform: each decade of node mass as likely as the next.
-        log_mass in -3.0f32..-1.0,
-        wind in (0.0f32..35.0, -std::f32::consts::FRAC_PI_4..std::f32::consts::FRAC_PI_4),
+        log_mass in -4.9999f32..=-1.0,
         gravity in 0.0f32..30.0,
-        frames in proptest::collection::vec(1e-6f32..(1.0 / 30.0), 1..40),
+        log_frames in proptest::collection::vec(-6.0f32..=-0.6021, 1..12),
         top_row in proptest::prelude::any::<bool>(),
     ) {
         let node_mass = 10f32.powf(log_mass);
-        let (grid, mut cloth, u) = random_cloth((rows, columns), node_mass, top_row, wind);
+        let mut still = cloth(rows, columns, node_mass, top_row);
         let g = Vec3::new(0.0, -gravity, 0.0);
-        let mut still = cloth.clone();
-        // Released from rest in still air, the cloth only loses energy (to within a hundredth of
-        // its weight times its size: the projection's first-order error).
         let start = still.energy(g);
         let mass = node_mass * (rows * columns) as f32;
-        let slack = 1e-2 * mass * gravity.max(1.0) * (grid.width + grid.height);
-        let mut short_frames = true;
-        for &dt in &frames {
-            cloth.step(dt, g, &|_| u);
-            proptest::prop_assert!(cloth.positions().iter().all(|p| p.is_finite()));
-            let s = stretch(&cloth, grid);
-            proptest::prop_assert!(s <= 0.1, "stretch {s} after a step of {dt} s");
+        let slack = 1e-2 * mass * gravity.max(1.0) * (1.2 + 0.8);
+        let mut elapsed = 0.0;
+        for &log_dt in &log_frames {
+            let dt = 10f32.powf(log_dt);
             still.step(dt, g, &|_| Vec3::ZERO);
             proptest::prop_assert!(still.positions().iter().all(|p| p.is_finite()));
-            let s = stretch(&still, grid);
-            proptest::prop_assert!(s <= 0.1, "stretch {s} in still air after a step of {dt} s");
-            short_frames &= dt <= 1.0 / 60.0;
-            if short_frames && node_mass >= added_mass(grid) {
-                let e = still.energy(g);
-                proptest::prop_assert!(e <= start + slack, "energy {start} → {e} J in still air, step {dt} s");
+            let e = still.energy(g);
+            proptest::prop_assert!(
+                e <= start + slack,
+                "{rows} × {columns}, {node_mass:.2e} kg, g {gravity}: energy {start} → {e} J \
+                 (slack {slack}) after a step of {dt} s"
+            );
+            elapsed += dt;
+            if elapsed > 0.5 {
+                break;
             }
         }
     }
+}
 
-    /// Nodes lighter than a gram (down to the constructor's 1e-5 kg): finite in any wind,
-    /// gravity and frames up to 1/30 s (their stretch and energy are not yet bounded:
-    /// docs/testing.md).
+proptest::proptest! {
+    // A fixed seed: CI runs the same cases each time.
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: 48,
+        rng_seed: RngSeed::Fixed(42),
+        ..Default::default()
+    })]
+
+    /// Any small grid, nodes of 1e-5 to 0.1 kg, wind up to a storm (35 m/s, up to 45° across the
+    /// cloth's plane), gravity up to 3 g and frames of 1 µs to 0.25 s: the nodes stay finite and
+    /// no yarn edge stretches more than 10 %.
     #[test]
-    fn the_lightest_particle_cloths_stay_finite(
+    fn particle_cloth_holds_for_any_mass_wind_gravity_and_frames(
         rows in 2usize..8,
         columns in 2usize..10,
-        log_mass in -4.95f32..-3.0,
+        log_mass in -4.9999f32..=-1.0,
         wind in (0.0f32..35.0, -std::f32::consts::FRAC_PI_4..std::f32::consts::FRAC_PI_4),
         gravity in 0.0f32..30.0,
-        frames in proptest::collection::vec(1e-6f32..(1.0 / 30.0), 1..40),
+        log_frames in proptest::collection::vec(-6.0f32..=-0.6021, 1..20),
         top_row in proptest::prelude::any::<bool>(),
     ) {
-        let (_, mut cloth, u) = random_cloth((rows, columns), 10f32.powf(log_mass), top_row, wind);
+        let mut cloth = cloth(rows, columns, 10f32.powf(log_mass), top_row);
+        let u = wind.0 * Vec3::new(wind.1.cos(), 0.0, wind.1.sin());
         let g = Vec3::new(0.0, -gravity, 0.0);
-        for &dt in &frames {
+        for &log_dt in &log_frames {
+            let dt = 10f32.powf(log_dt);
             cloth.step(dt, g, &|_| u);
-            proptest::prop_assert!(cloth.positions().iter().all(|p| p.is_finite()), "{dt} s");
+            proptest::prop_assert!(cloth.positions().iter().all(|p| p.is_finite()));
+            let s = cloth.max_strain();
+            proptest::prop_assert!(s <= 0.1, "stretch {s} after a step of {dt} s");
         }
     }
 }

@@ -1,83 +1,61 @@
-//! The air's load on a particle cloth each substep: the face law per triangle (lift, smoothed
-//! over the sheet; pressure drag along each node's normal) and skin friction along the sheet.
+//! The air's load on a particle cloth each substep: each node's normal, its pressure's force
+//! rates (smoothed and local) and its skin-friction rate.
 
 use bevy::math::Vec3;
 
-use super::super::force::face_force;
 use super::ParticleCloth;
-use super::screen::screen_grid;
 
 /// Skin friction coefficient of each side of the cloth: Prandtl's turbulent flat plate,
 /// 0.074 Re^−1/5, at the Re ≈ 10⁶ of a flag a metre or two long in a breeze.
 const SKIN_FRICTION: f32 = 0.005;
-/// The face law's lift is smoothed over this fraction of the cloth's smaller side (see
-/// [`screen_grid`]): waves shorter than about the span are driven less, as the air flows round
-/// a finite sheet's edges. Half the span puts a flag's waves at about 1.8 of its length where
-/// flags' are 1.87 (Raynaud & Mulleners 2026, 48 paper flags of several aspect ratios).
-const LIFT_SMOOTHING: f32 = 0.5;
+
+/// Largest force rate, kg/s: keeps every rate, and its product with a finite velocity, finite.
+const MOST_RATE: f32 = 1e30;
 
 impl ParticleCloth {
-    /// Lift per node (smoothed), pressure-drag rate and normal per node from every triangle, and
-    /// skin-friction rate per node; returns the largest lift rate (1/s).
-    pub(super) fn loads(&mut self) -> f32 {
+    /// Each node's unit normal from its neighbours along the row and the column (one-sided at
+    /// the edges; zero where the sheet is degenerate), on the side +Z is at rest.
+    pub(super) fn normals_into(&self, normals: &mut Vec<Vec3>) {
+        let (rows, columns) = (self.grid.rows, self.grid.columns);
+        let p = &self.positions;
+        normals.clear();
+        normals.extend((0..rows * columns).map(|i| {
+            let (k, j) = (i / columns, i % columns);
+            let along =
+                p[k * columns + (j + 1).min(columns - 1)] - p[k * columns + j.saturating_sub(1)];
+            let up = p[k.saturating_sub(1) * columns + j] - p[(k + 1).min(rows - 1) * columns + j];
+            let n = along.cross(up).normalize_or_zero();
+            if n.is_finite() { n } else { Vec3::ZERO }
+        }));
+    }
+
+    /// The force rates of the pressure and the skin-friction rate of every node, from the
+    /// velocities, normals and wind at the start of the substep. With w = v_rel · n =
+    /// |v_rel| sin α the face law's normal share A p = ½ ρ A |v_rel|² (C_D sin²α +
+    /// C_L sin α cos²α) sgn w is (L + K) w: L = ½ ρ A |v_rel| C_L cos²α, smoothed over the
+    /// sheet, and K = ½ ρ A |v_rel| C_D sin α, local (A the node's area). Skin friction
+    /// c = ρ C_f A |v_t − u_t| (both sides).
+    pub(super) fn loads(&mut self) {
         let c = self.coefficients;
-        let columns = self.grid.columns;
-        self.lift.fill(Vec3::ZERO);
-        self.drag.fill(0.0);
-        self.normals.fill(Vec3::ZERO);
-        let mut rate = 0.0f32;
-        for k in 0..self.grid.rows - 1 {
-            for j in 0..columns - 1 {
-                let a = k * columns + j;
-                let (b, cc, d) = (a + columns, a + 1, a + columns + 1);
-                for [p, q, r] in [[a, b, cc], [cc, b, d]] {
-                    let (xp, xq, xr) = (self.positions[p], self.positions[q], self.positions[r]);
-                    let cross = (xq - xp).cross(xr - xp);
-                    let area = 0.5 * cross.length();
-                    let v = (self.velocities[p] + self.velocities[q] + self.velocities[r]) / 3.0;
-                    let u = (self.wind[p] + self.wind[q] + self.wind[r]) / 3.0;
-                    let rel = v - u;
-                    let lift = face_force(rel, cross, area, 0.0, c.lift, c.density);
-                    let speed = rel.length();
-                    let k_drag = if speed > 0.0 {
-                        face_force(rel, cross, area, c.drag, 0.0, c.density).length() / speed
-                    } else {
-                        0.0
-                    };
-                    // Area-weighted, and the same side for all: the grid's winding.
-                    let normal = if cross.is_finite() { cross } else { Vec3::ZERO };
-                    for node in [p, q, r] {
-                        self.lift[node] += lift / 3.0;
-                        self.drag[node] += k_drag / 3.0;
-                        self.normals[node] += normal;
-                    }
-                    let r = c.density * c.lift * area * speed / self.node_mass;
-                    if r.is_finite() {
-                        rate = rate.max(r);
-                    }
-                }
-            }
-        }
-        let node_area = self.grid.width * self.grid.height / self.positions.len() as f32;
-        let per_speed = c.density * SKIN_FRICTION * node_area;
         for i in 0..self.positions.len() {
-            let n = self.normals[i].normalize_or_zero();
-            self.normals[i] = n;
-            let rel = self.velocities[i] - self.wind[i];
-            let along = (rel - n * rel.dot(n)).length();
-            let f = per_speed * along;
-            self.friction[i] = if f.is_finite() { f } else { 0.0 };
+            let (n, u) = (self.normals[i], self.wind[i]);
+            let rel = self.velocities[i] - u;
+            let speed = rel.length();
+            let along = rel.dot(n);
+            let sine = if speed > 0.0 {
+                (along.abs() / speed).min(1.0)
+            } else {
+                0.0
+            };
+            let area = self.areas[i];
+            let rate = |slope: f32| {
+                let d = (0.5 * c.density * area * speed * slope).min(MOST_RATE);
+                if d.is_finite() { d } else { 0.0 }
+            };
+            self.lift_rate[i] = rate(c.lift * (1.0 - sine * sine));
+            self.drag_rate[i] = rate(c.drag * sine);
+            let f = c.density * SKIN_FRICTION * area * (rel - n * along).length();
+            self.friction[i] = if f.is_finite() { f.min(MOST_RATE) } else { 0.0 };
         }
-        let spacing = (self.grid.segment(), self.grid.row_spacing());
-        let length = LIFT_SMOOTHING * self.grid.width.min(self.grid.height);
-        screen_grid(
-            &mut self.lift,
-            self.grid.rows,
-            columns,
-            spacing,
-            length,
-            &mut self.scratch,
-        );
-        rate
     }
 }

@@ -1,11 +1,14 @@
-//! A particle cloth (XPBD distance constraints, pinned nodes, gravity) whose triangles receive
-//! lift and drag: a physically simulated flag.
+//! A particle cloth (pinned nodes, gravity, inextensible yarns, shear and bending in physical
+//! units) pushed by the air's pressure along its normal: a physically simulated flag.
 
 use crate::error::InvalidValue;
 
+mod constraints;
 mod loads;
+mod pressure;
 mod screen;
 mod substep;
+mod yarns;
 use bevy::math::Vec3;
 
 use super::coefficients::AeroCoefficients;
@@ -21,93 +24,110 @@ pub enum Pinning {
     TopRow,
 }
 
-/// The air a cloth carries with it when it moves across itself, as a fraction of a flat
-/// plate's added mass ρ π c / 4 per area (c the smaller side). The whole figure (about what
-/// potential flow gives a wave of the flag's length, 2ρ/|k| per area) overdoes it here, since
-/// the face law's lift already carries part of the air's reaction: a flag's drag comes out
-/// 2.5–3.8 times the free-flag drag of AS/NZS 1170.2 Appendix F and its tip swings 0.9–1.3 L.
-/// An eighth is fitted to the measurements: drag 0.72–1.07 of the code's at 4–12 m/s, waves
-/// 1.7–1.8 flag lengths long where gravity is small (1.87 measured by Raynaud & Mulleners 2026).
-const ADDED_MASS_SHARE: f32 = 0.125;
+/// The air a node carries when it moves across the sheet, as a fraction of a flat plate's
+/// added mass ρ π c / 4 per area (c the cloth's smaller side): fitted with the pressure's
+/// smoothing length to the flapping flag's drag and waves (docs/aero.md).
+const ADDED_MASS_SHARE: f32 = 0.3;
 
-/// Relative stretch of a stretch edge (seen at the start of a sweep) above which the solver
-/// sweeps again past [`ParticleCloth::iterations`].
-const STRETCH_TOLERANCE: f32 = 0.05;
-/// Node masses a particle cloth accepts, kg: lighter nodes (a gram's hundredth) are driven by
-/// their drag and the constraints' rates past what an f32 substep resolves (1e-6 kg went NaN in
-/// still air within 5 steps), heavier ones lose every force to rounding.
+/// In-plane shear stiffness G t, N/m per radian: a loosely woven fabric's at small shear
+/// (Kawabata's G, about 1–50 N/m); low enough that a flag hangs from its pole by shearing.
+const SHEAR_STIFFNESS: f32 = 1.5;
+
+/// Bending stiffness B, N·m: a flag cloth's (Kawabata: 0.05–0.2 gf·cm²/cm, 5e-6–2e-5 N·m).
+const BENDING_STIFFNESS: f32 = 2e-5;
+
+/// Relative stretch of a yarn edge above which a substep's yarns are linearised again, and
+/// past which the next millisecond is cut into twice the substeps.
+const STRETCH_TOLERANCE: f32 = 0.02;
+
+/// Node masses a particle cloth accepts, kg: lighter nodes are driven by their drag past what
+/// an f32 substep resolves, heavier ones lose every force to rounding.
 const MIN_NODE_MASS: f64 = 1e-5;
 const MAX_NODE_MASS: f64 = 1e9;
 
 /// A `rows × columns` grid of particles laid out like [`ClothSim`](crate::cloth::ClothSim)'s
 /// (x along the yarns from the pole, y up, top row at y = 0), in the body's local frame.
 ///
-/// Each substep: per triangle, the face law with the triangle's mean velocity and wind, its lift
-/// and drag shared by its three nodes; per node, the velocity update with the drag implicit
-/// (stable at any step, no overshoot of the wind); then XPBD projection of stretch, shear and
-/// bend constraints, and velocities from the moved positions.
+/// Each node has the mass m of its share of the cloth and, across the sheet, carries air: its
+/// inertia is M = m I + m_a n nᵀ (n its unit normal, from its neighbours; m_a a fraction of a
+/// flat plate's added mass for the node's area). Time advances a millisecond at a time
+/// ([`ParticleCloth::SUBSTEP`], Macklin et al., "Small steps in physics simulation", 2019),
+/// each millisecond one substep (or 2, 4 … [`ParticleCloth::MAX_SUBSTEPS`] while the yarns
+/// could not be held within 2 % of their lengths), each substep:
+/// 1. **Pressure along the normal, implicit.** p = ½ ρ |v_rel|² C_N(α) sgn(v_rel · n),
+///    v_rel = v − u, α the incidence, C_N = C_D sin²α + C_L sin α cos²α (the face law's share
+///    along the normal), written p = (l + k) w with w = v_rel · n and the rates
+///    l = ½ ρ |v_rel| C_L cos²α (smoothed over the sheet) and k = ½ ρ |v_rel| C_D sin α (local),
+///    frozen over the substep: with L = A l and K = A k (A the node's area) the node's force is
+///    A p = √L S(√L w') + K w', w' the velocity at the end of the substep and S a screened
+///    filter over a quarter of the smaller side (in potential flow the pressure on a wave of
+///    wavenumber k falls as 1/|k|; past the sides across the yarns from the pins it falls to
+///    zero). Both shares only take energy out of the motion relative to the air.
+/// 2. **Skin friction** ½ ρ C_f |v_t − u_t| (v_t − u_t) on each side, along the sheet, implicit.
+/// 3. **Velocities**: M (v' − v) = h (m g − A p n − c (v'_t − u_t)).
+/// 4. **Constraints** on x + h v', each projected with the same inverse inertia W = M⁻¹:
+///    bending (x_a − 2 x_b + x_c = 0 along rows and columns, compliance s³ / (B w)) and shear
+///    (both diagonals of every cell, compliance from G t) by XPBD; the yarns (every row and
+///    column edge) inextensible, solved together by conjugate gradients preconditioned with each
+///    grid line's tridiagonal block; a long-range attachment per node to the pin of its yarn,
+///    which it may never be further from than at rest.
+/// 5. v = (x − x₀) / h; each node's normal is then brought up to date, its velocity along the
+///    new normal set so that ½ m |v|² + ½ m_a (v · n)² is what it was.
 ///
-/// Four readings make a thin sheet flap as flags do (waves about 1.8 flag lengths long running
-/// to the free edge at 0.74–0.99 of the wind's speed, the tip swinging 0.36–0.67 of the length,
-/// f A / U 0.15–0.28, the drag of the wind code's free flag; see the report's "against
-/// measurements"), where the face law alone gives a stiff, buzzing sheet:
-/// - **Pressure acts along the normal.** The face law's drag, ½ C_D ρ A |n·v_rel| |v_rel|,
-///   pushes each node along its normal only (the mean of its faces' normals):
-///   (m + m_a + h K) v_n' = (m + m_a) v_n + h F_n + h K u_n, F_n the other forces' normal share
-///   and m_a the added mass below. Along −v_rel, as for a rigid plate, its share along
-///   the sheet would be a pressure pulling the cloth taut from its free edge, which damps every
-///   wave.
-/// - **Along the sheet, skin friction**, ½ ρ C_f |v_t| v_t on each side, C_f = 0.005
-///   (Prandtl's turbulent flat plate at Re ≈ 10⁶), also implicit.
-/// - **Lift is smoothed** over half the cloth's smaller side (a screened filter,
-///   (1 − ℓ²∇²) L̃ = L, along rows and columns): the face law reacts to each face's own
-///   incidence, while in potential flow the pressure on a wave falls as 1/|k| (Argentina &
-///   Mahadevan 2005) and round a finite sheet's edges it falls further, so waves shorter than
-///   the sheet are driven less.
-/// - **The air moves with the sheet.** Across itself a node accelerates its added mass of air
-///   too (an eighth of a plate's ρ π c / 4 per area): m + m_a in the normal update
-///   above. The constraints still move nodes with their own mass, and
-///   [`ParticleCloth::aerodynamic_force`] leaves out the added mass's reaction (zero on
-///   average).
-///
-/// At least [`ParticleCloth::min_substeps`] substeps per step, more (up to
-/// [`ParticleCloth::MAX_SUBSTEPS`]) to keep h × lift rate ≤ 1/4; past that cap the lift is limited to
-/// turning a node's relative velocity by 1/4 rad per substep.
+/// [`ParticleCloth::energy`] counts the carried air's kinetic energy ½ m_a (v · n)².
 #[derive(Clone, Debug)]
 pub struct ParticleCloth {
     grid: ClothGrid,
     positions: Vec<Vec3>,
     velocities: Vec<Vec3>,
+    /// 1 / m, 0 for a pinned node.
     inverse_mass: Vec<f32>,
-    /// (node a, node b, rest length, compliance).
-    constraints: Vec<(u32, u32, f32, f32)>,
-    /// Long-range attachments (node, its pin, rest distance): a node may not be further from
-    /// the pin of its row (pole) or column (rod) than at rest, which keeps a cloth in a gale
-    /// from stretching however few iterations the constraints get.
-    tethers: Vec<(u32, u32, f32)>,
     node_mass: f32,
-    /// The air moved with a node across the sheet, kg ([`ADDED_MASS_SHARE`]).
-    added_mass: f32,
+    /// Each node's share of the sheet, m² (a quarter of each cell it is a corner of), the air
+    /// it carries across the sheet, kg, and β = m_a / (m + m_a).
+    areas: Vec<f32>,
+    added_mass: Vec<f32>,
+    beta: Vec<f32>,
+    yarns: yarns::Yarns,
+    /// Shear: (node a, node b, rest length, compliance), both diagonals of every cell.
+    shear: Vec<(u32, u32, f32, f32)>,
+    /// Bending: three consecutive nodes (a, b, c) along a row or a column and the compliance of
+    /// x_a − 2 x_b + x_c = 0, m/N.
+    bends: Vec<(u32, u32, u32, f32)>,
+    /// Long-range attachments (node, its pin, rest distance).
+    tethers: Vec<(u32, u32, f32)>,
+    pinning: Pinning,
     coefficients: AeroCoefficients,
-    /// Fewest constraint iterations per substep, used within
-    /// 1..=[`ParticleCloth::MAX_ITERATIONS`](crate::aero::ParticleCloth::MAX_ITERATIONS); more
-    /// are swept while a stretch edge is more than 5 % off its length (gales).
+    /// Constraint sweeps per substep, used within 1..=[`ParticleCloth::MAX_ITERATIONS`].
     pub iterations: usize,
-    /// Fewest substeps per step (XPBD converges by substeps more than by iterations), used
-    /// within 1..=[`ParticleCloth::MAX_SUBSTEPS`].
+    /// Fewest substeps per [`ParticleCloth::SUBSTEP`], used within
+    /// 1..=[`ParticleCloth::MAX_SUBSTEPS`].
     pub min_substeps: u32,
-    lift: Vec<Vec3>,
-    drag: Vec<f32>,
-    /// Each node's normal (the mean of its faces') and skin-friction rate (kg/s).
+    /// Each node's unit normal (zero where the sheet is degenerate): the one its inertia and
+    /// velocity are expressed with.
     normals: Vec<Vec3>,
+    fresh_normals: Vec<Vec3>,
+    /// Per node: the pressure's smoothed and local force rates and the skin-friction rate
+    /// (kg/s), the normal velocity relative to the air before the pressure (m/s), the reach
+    /// h / (m + m_a) and the pressure's force of the substep (N).
+    lift_rate: Vec<f32>,
+    drag_rate: Vec<f32>,
     friction: Vec<f32>,
-    scratch: Vec<f32>,
+    relative: Vec<f32>,
+    reach: Vec<f32>,
+    pressure: Vec<f32>,
+    pressure_scratch: pressure::PressureScratch,
+    wind: Vec<Vec3>,
+    /// Milliseconds since the wind was last sampled.
+    wind_age: u32,
+    shear_lambdas: Vec<f32>,
+    bend_lambdas: Vec<Vec3>,
     /// The air's force on the cloth over the last step (mean), N.
     force: Vec3,
-    /// Time of steps shorter than [`ParticleCloth::MIN_STEP`] not simulated yet, s.
+    /// Time not simulated yet (less than a millisecond), s.
     owed: f32,
-    lambdas: Vec<f32>,
-    wind: Vec<Vec3>,
+    /// Substeps the next millisecond is cut into.
+    parts: u32,
     previous: Vec<Vec3>,
 }
 
@@ -119,41 +139,40 @@ impl ParticleCloth {
         coefficients: AeroCoefficients,
         pinning: Pinning,
     ) -> Result<Self, AeroError> {
-        let invalid = |field, value, reason| {
-            AeroError::Invalid(InvalidValue {
-                field,
-                value,
-                reason,
-            })
-        };
         // The grid's own error, field and all.
         grid.validate().map_err(|e| match e {
-            ClothError::Invalid(InvalidValue {
-                field,
-                value,
-                reason,
-            }) => invalid(field, value, reason),
+            ClothError::Invalid(invalid) => invalid,
             ClothError::Count {
                 field,
                 value,
                 reason,
-            } => invalid(field, value as f32, reason),
+            } => InvalidValue {
+                field,
+                value: value as f32,
+                reason,
+            },
         })?;
-        if grid.rows < 2 {
-            return Err(invalid("grid.rows", grid.rows as f32, "must be ≥ 2"));
-        }
-        if grid.height <= 0.0 {
-            return Err(invalid("grid.height", grid.height, "must be > 0"));
-        }
-        if !(areal_density.is_finite() && areal_density > 0.0) {
-            return Err(invalid(
-                "areal_density",
-                areal_density,
-                "must be finite and > 0",
-            ));
-        }
+        InvalidValue::check(grid.rows >= 2, "grid.rows", grid.rows as f32, "must be ≥ 2")?;
+        InvalidValue::check(grid.height > 0.0, "grid.height", grid.height, "must be > 0")?;
+        InvalidValue::check(
+            areal_density.is_finite() && areal_density > 0.0,
+            "areal_density",
+            areal_density,
+            "must be finite and > 0",
+        )?;
         coefficients.validate()?;
         let (rows, columns) = (grid.rows, grid.columns);
+        let n = rows * columns;
+        // Checked on what the solver divides by: the node mass, in f64 so no product overflows.
+        let node_mass =
+            f64::from(areal_density) * f64::from(grid.width) * f64::from(grid.height) / n as f64;
+        InvalidValue::check(
+            (MIN_NODE_MASS..=MAX_NODE_MASS).contains(&node_mass),
+            "areal_density",
+            areal_density,
+            "each node's mass (areal_density × width × height / nodes) must be within 1e-5..1e9 kg",
+        )?;
+        let node_mass = node_mass as f32;
         let (dx, dy) = (grid.segment(), grid.row_spacing());
         // A millimetre ripple out of the plane, so that the sheet can fold rather than hang in its
         // own plane like a board (a real flag is never exactly flat).
@@ -165,98 +184,123 @@ impl ParticleCloth {
                 })
             })
             .collect();
-        // Checked on what the solver divides by: the node mass, in f64 so no product overflows.
-        let node_mass = f64::from(areal_density) * f64::from(grid.width) * f64::from(grid.height)
-            / (rows * columns) as f64;
-        if !(MIN_NODE_MASS..=MAX_NODE_MASS).contains(&node_mass) {
-            return Err(invalid(
-                "areal_density",
-                areal_density,
-                "each node's mass (areal_density × width × height / nodes) must be within 1e-5..1e9 kg",
-            ));
-        }
-        let node_mass = node_mass as f32;
-        let added_mass = ADDED_MASS_SHARE
+        let edge = |at: usize, count: usize| if at == 0 || at + 1 == count { 0.5 } else { 1.0 };
+        let areas: Vec<f32> = (0..n)
+            .map(|i| dx * dy * edge(i / columns, rows) * edge(i % columns, columns))
+            .collect();
+        let per_area = ADDED_MASS_SHARE
             * coefficients.density
             * std::f32::consts::FRAC_PI_4
-            * grid.width.min(grid.height)
-            * (grid.width * grid.height / (rows * columns) as f32);
-        let inverse_mass = (0..rows * columns)
-            .map(|i| {
-                let (k, j) = (i / columns, i % columns);
-                let pinned = match pinning {
-                    Pinning::PoleColumn => j == 0,
-                    Pinning::TopRow => k == 0,
-                };
-                if pinned { 0.0 } else { 1.0 / node_mass }
-            })
+            * grid.width.min(grid.height);
+        let added_mass: Vec<f32> = areas
+            .iter()
+            .map(|a| Some(per_area * a).filter(|m| m.is_finite()).unwrap_or(0.0))
             .collect();
-        let mut constraints = Vec::new();
-        let index = |k: usize, j: usize| (k * columns + j) as u32;
-        let mut link = |a: u32, b: u32, compliance: f32| {
-            let rest = positions[a as usize].distance(positions[b as usize]);
-            constraints.push((a, b, rest, compliance));
+        let beta = added_mass
+            .iter()
+            .map(|m_a| m_a / (node_mass + m_a))
+            .collect();
+        let pinned = |i: usize| match pinning {
+            Pinning::PoleColumn => i.is_multiple_of(columns),
+            Pinning::TopRow => i < columns,
         };
-        for k in 0..rows {
-            for j in 0..columns {
-                if j + 1 < columns {
-                    link(index(k, j), index(k, j + 1), 0.0);
-                }
-                if k + 1 < rows {
-                    link(index(k, j), index(k + 1, j), 0.0);
-                }
-                if k + 1 < rows && j + 1 < columns {
-                    link(index(k, j), index(k + 1, j + 1), 1e-4);
-                    link(index(k + 1, j), index(k, j + 1), 1e-4);
-                }
-                if j + 2 < columns {
-                    link(index(k, j), index(k, j + 2), 1e-2);
-                }
-                if k + 2 < rows {
-                    link(index(k, j), index(k + 2, j), 1e-2);
+        let inverse_mass = (0..n)
+            .map(|i| if pinned(i) { 0.0 } else { 1.0 / node_mass })
+            .collect();
+        let distance = |a: usize, b: usize| positions[a].distance(positions[b]);
+        // Two diagonals of stiffness G t d² / (2 dx dy) store a cell's shear energy
+        // ½ G t γ² dx dy. Listed so that consecutive constraints share no node.
+        let diagonal = dx * dx + dy * dy;
+        let shear_compliance = 2.0 * dx * dy / (SHEAR_STIFFNESS * diagonal);
+        let mut shear = Vec::with_capacity(2 * (rows - 1) * (columns - 1));
+        for (from, to) in [(0, columns + 1), (1, columns)] {
+            for parity in 0..2 {
+                for k in 0..rows - 1 {
+                    for j in (parity..columns - 1).step_by(2) {
+                        let (p, q) = (k * columns + j + from, k * columns + j + to);
+                        shear.push((p as u32, q as u32, distance(p, q), shear_compliance));
+                    }
                 }
             }
         }
-        let tethers = (0..rows * columns)
-            .filter_map(|i| {
-                let (k, j) = (i / columns, i % columns);
+        // Bending energy ½ B κ² per area, κ = |x_a − 2 x_b + x_c| / s² (flat at rest): a
+        // compliance of s³ / (B w) per three nodes s apart on a strip w wide (Bergou et al.'s
+        // quadratic bending, the same stiffness on any grid).
+        let stride_bends = |stride: usize, first: &dyn Fn(usize, usize) -> Option<usize>| {
+            let compliance = if stride == 1 {
+                dx.powi(3) / (BENDING_STIFFNESS * dy)
+            } else {
+                dy.powi(3) / (BENDING_STIFFNESS * dx)
+            };
+            // By phase along the line, so that consecutive constraints share no node.
+            (0..3)
+                .flat_map(move |phase| (0..n).map(move |i| (phase, i)))
+                .filter_map(|(phase, i)| first(phase, i))
+                .map(|a| {
+                    let a = a as u32;
+                    let s = stride as u32;
+                    (a, a + s, a + 2 * s, compliance)
+                })
+                .collect::<Vec<_>>()
+        };
+        let mut bends = stride_bends(1, &|phase, i| {
+            let j = i % columns;
+            (j + 2 < columns && j % 3 == phase).then_some(i)
+        });
+        bends.extend(stride_bends(columns, &|phase, i| {
+            let k = i / columns;
+            (k + 2 < rows && k % 3 == phase).then_some(i)
+        }));
+        let tethers = (0..n)
+            .filter(|&i| !pinned(i))
+            .map(|i| {
                 let pin = match pinning {
-                    Pinning::PoleColumn if j > 0 => index(k, 0),
-                    Pinning::TopRow if k > 0 => index(0, j),
-                    _ => return None,
+                    Pinning::PoleColumn => i - i % columns,
+                    Pinning::TopRow => i % columns,
                 };
-                let rest = positions[i].distance(positions[pin as usize]);
-                Some((i as u32, pin, rest))
+                (i as u32, pin as u32, distance(i, pin))
             })
             .collect();
-        let n = rows * columns;
-        Ok(Self {
-            tethers,
+        let yarns = yarns::Yarns::new(rows, columns, &positions);
+        let mut cloth = Self {
             grid,
             velocities: vec![Vec3::ZERO; n],
             previous: positions.clone(),
-            owed: 0.0,
             positions,
             inverse_mass,
-            constraints,
             node_mass,
-            added_mass: if added_mass.is_finite() {
-                added_mass
-            } else {
-                0.0
-            },
+            areas,
+            added_mass,
+            beta,
+            yarns,
+            shear_lambdas: vec![0.0; shear.len()],
+            shear,
+            bend_lambdas: vec![Vec3::ZERO; bends.len()],
+            bends,
+            tethers,
+            pinning,
             coefficients,
-            iterations: 4,
-            min_substeps: 8,
-            lift: vec![Vec3::ZERO; n],
-            drag: vec![0.0; n],
-            normals: vec![Vec3::ZERO; n],
+            iterations: 1,
+            min_substeps: 1,
+            normals: Vec::with_capacity(n),
+            fresh_normals: Vec::with_capacity(n),
+            lift_rate: vec![0.0; n],
+            drag_rate: vec![0.0; n],
             friction: vec![0.0; n],
-            scratch: Vec::new(),
-            force: Vec3::ZERO,
-            lambdas: Vec::new(),
+            relative: vec![0.0; n],
+            reach: vec![0.0; n],
+            pressure: vec![0.0; n],
+            pressure_scratch: pressure::PressureScratch::default(),
             wind: vec![Vec3::ZERO; n],
-        })
+            wind_age: u32::MAX,
+            force: Vec3::ZERO,
+            owed: 0.0,
+            parts: 1,
+        };
+        let mut normals = std::mem::take(&mut cloth.normals);
+        cloth.normals_into(&mut normals);
+        cloth.normals = normals;
+        Ok(cloth)
     }
 
     /// Node positions, row-major (local frame).
@@ -279,80 +323,80 @@ impl ParticleCloth {
         self.node_mass
     }
 
-    /// Largest |length / rest − 1| over the stretch (row and column) constraints.
+    /// Largest |length / rest − 1| over the edges along the rows and the columns.
     pub fn max_strain(&self) -> f32 {
-        self.constraints
-            .iter()
-            .filter(|c| c.3 == 0.0)
-            .map(|&(a, b, rest, _)| {
-                (self.positions[a as usize].distance(self.positions[b as usize]) / rest - 1.0).abs()
-            })
-            .fold(0.0, f32::max)
+        self.yarns.max_strain(&self.positions)
     }
 
-    /// The mean force of the air on the whole cloth over the last [`Self::step`], N (local
-    /// frame): lift, pressure drag and skin friction, as they were applied. Its component along
-    /// the wind is the cloth's drag.
+    /// The mean force of the air on the whole cloth over the last [`Self::step`] that advanced
+    /// it, N (local frame): pressure and skin friction, as they were applied (the carried air's
+    /// inertia is the nodes' own, not a force). Its component along the wind is the cloth's drag.
     pub fn aerodynamic_force(&self) -> Vec3 {
         self.force
     }
 
-    /// Kinetic plus potential energy of the free nodes, J.
+    /// Kinetic plus potential energy of the free nodes, J, with the kinetic energy of the air
+    /// they carry across the sheet: Σ ½ m |v|² + ½ m_a (v · n)² − m g · x.
     pub fn energy(&self, gravity: Vec3) -> f32 {
+        let m = self.node_mass;
         self.positions
             .iter()
             .zip(&self.velocities)
-            .zip(&self.inverse_mass)
-            .filter(|(_, w)| **w > 0.0)
-            .map(|((p, v), _)| self.node_mass * (0.5 * v.length_squared() - gravity.dot(*p)))
+            .zip(&self.normals)
+            .zip(self.inverse_mass.iter().zip(&self.added_mass))
+            .filter(|(_, (w, _))| **w > 0.0)
+            .map(|(((p, v), n), (_, m_a))| {
+                0.5 * m * v.length_squared() + 0.5 * m_a * v.dot(*n).powi(2) - m * gravity.dot(*p)
+            })
             .sum()
     }
 
-    /// Advances by `dt` under `gravity` in the fluid velocity `wind(p)` (local frame). A
-    /// non-finite or non-positive `dt` or a non-finite `gravity` leaves the cloth as it is
-    /// (the plugin reports such a cloth with [`PhysicalClothInvalid`](super::physical_cloth::PhysicalClothInvalid)).
-    /// Steps shorter than [`ParticleCloth::MIN_STEP`] are added to the next one.
+    /// Advances by `dt` under `gravity` in the fluid velocity `wind(p)` (local frame), in whole
+    /// milliseconds ([`ParticleCloth::SUBSTEP`]): what is left of `dt` (less than one) is
+    /// simulated with the next step, and a step longer than [`ParticleCloth::MAX_STEP`] is
+    /// simulated as that long. The wind is sampled every [`ParticleCloth::WIND_INTERVAL`]
+    /// milliseconds. A non-finite or non-positive `dt` or a non-finite `gravity` leaves the cloth
+    /// as it is (the plugin reports such a cloth with
+    /// [`PhysicalClothInvalid`](super::physical_cloth::PhysicalClothInvalid)).
     pub fn step(&mut self, dt: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
         if !(dt.is_finite() && dt > 0.0 && gravity.is_finite()) {
             return;
         }
-        // Velocities come from (x − x₀) / h: a sliver of a step would turn the constraints'
-        // small residual into a huge velocity (1e-9 s sent a settled flag's node to 2e6 m/s).
-        // Slivers are owed and simulated with the next step that makes them long enough.
-        let dt = dt + self.owed;
-        if dt < ParticleCloth::MIN_STEP {
-            self.owed = dt;
+        let tick = ParticleCloth::SUBSTEP;
+        let total = (dt + self.owed).min(ParticleCloth::MAX_STEP);
+        // Whole milliseconds; within a thousandth of one counts as whole (f32 frame times).
+        let count = (total / tick + 1e-3).floor();
+        self.owed = (total - count * tick).max(0.0);
+        if count < 1.0 {
             return;
         }
-        self.owed = 0.0;
-        let mut remaining = dt;
         self.force = Vec3::ZERO;
-        // A long frame (a hitch) in substeps no longer than MAX_SUBSTEP: one of a tenth of a
-        // second turned a still cloth's constraint corrections into a fifth of its energy.
-        let longest = (dt / self.min_substeps.clamp(1, ParticleCloth::MAX_SUBSTEPS) as f32)
-            .min(ParticleCloth::MAX_SUBSTEP);
-        for i in 0..ParticleCloth::MAX_SUBSTEPS {
-            for (u, p) in self.wind.iter_mut().zip(&self.positions) {
-                let w = wind(*p);
-                *u = if w.is_finite() { w } else { Vec3::ZERO };
+        for _ in 0..count as u32 {
+            if self.wind_age >= ParticleCloth::WIND_INTERVAL {
+                for (u, p) in self.wind.iter_mut().zip(&self.positions) {
+                    let w = wind(*p);
+                    *u = if w.is_finite() { w } else { Vec3::ZERO };
+                }
+                self.wind_age = 0;
             }
-            let rate = self.loads();
-            let mut h = if i + 1 == ParticleCloth::MAX_SUBSTEPS {
-                remaining
-            } else {
-                remaining.min(longest).min(0.25 / rate.max(1e-12))
-            };
-            // Velocities come from (x − x₀) / h: never leave a sliver of a substep for later.
-            if remaining - h < 0.01 * h {
-                h = remaining;
+            self.wind_age += 1;
+            // More substeps while the yarns could not be held within STRETCH_TOLERANCE (gales,
+            // huge gravity), fewer again once they are well within it.
+            let most = ParticleCloth::MAX_SUBSTEPS;
+            let parts = self.parts.max(self.min_substeps).clamp(1, most);
+            let h = tick / parts as f32;
+            let mut worst = 0.0f32;
+            for _ in 0..parts {
+                self.loads();
+                worst = worst.max(self.substep(h, gravity));
             }
-            self.substep(h, gravity);
-            remaining -= h;
-            if remaining <= 0.0 {
-                break;
+            if worst > STRETCH_TOLERANCE || worst.is_nan() {
+                self.parts = (parts * 2).min(most);
+            } else if worst < 0.25 * STRETCH_TOLERANCE {
+                self.parts = (parts / 2).max(1);
             }
         }
-        self.force /= dt;
+        self.force /= count * tick;
         if !self.force.is_finite() {
             self.force = Vec3::ZERO;
         }
@@ -361,17 +405,19 @@ impl ParticleCloth {
 
 /// Limits and constants of [`ParticleCloth`].
 impl ParticleCloth {
-    /// Most constraint iterations per substep: [`ParticleCloth::iterations`] is clamped to it.
-    pub const MAX_ITERATIONS: usize = 64;
+    /// Most constraint sweeps per substep: [`ParticleCloth::iterations`] is clamped to it.
+    pub const MAX_ITERATIONS: usize = 8;
 
-    /// Most substeps per step.
-    pub const MAX_SUBSTEPS: u32 = 64;
+    /// Most substeps per [`ParticleCloth::SUBSTEP`]: [`ParticleCloth::min_substeps`] is clamped
+    /// to it.
+    pub const MAX_SUBSTEPS: u32 = 16;
 
-    /// Shortest step simulated, s: a shorter one is added to the next ([`ParticleCloth::step`]).
-    pub const MIN_STEP: f32 = 1e-3;
+    /// The longest substep, s, whatever the step: every millisecond is one substep or more.
+    pub const SUBSTEP: f32 = 1e-3;
 
-    /// Longest substep, s (while the substeps last: a step of more than
-    /// `MAX_SUBSTEPS × MAX_SUBSTEP` = 0.32 s has longer ones). The default 8 substeps of a
-    /// frame up to 1/25 s are shorter.
-    pub const MAX_SUBSTEP: f32 = 5e-3;
+    /// Longest step simulated, s: a longer one (a hitch) is simulated as this long.
+    pub const MAX_STEP: f32 = 0.25;
+
+    /// Milliseconds between two samples of the wind.
+    pub const WIND_INTERVAL: u32 = 4;
 }

@@ -1,96 +1,80 @@
-//! One substep of a particle cloth: the velocity update (gravity, lift, implicit pressure drag
-//! with the added mass across the sheet, implicit skin friction along it), then XPBD projection
-//! of the constraints and the tethers, and velocities from the moved positions.
+//! One substep of a particle cloth: velocities with the air implicit and the nodes' inertia
+//! m I + m_a n nᵀ, the constraints on the predicted positions with the same inertia, velocities
+//! from the moved positions, and the normals brought up to date with the carried air's energy
+//! kept.
 
 use bevy::math::Vec3;
 
-use super::{ParticleCloth, STRETCH_TOLERANCE};
+use super::constraints::{Inertia, project_bending, project_distances, project_tethers};
+use super::pressure::{Loads, smoothed_pressure};
+use super::screen::Screen;
+use super::{ParticleCloth, Pinning, STRETCH_TOLERANCE};
+
+/// The pressure is smoothed over this fraction of the cloth's smaller side (see [`Screen`]):
+/// fitted with the added mass to the flapping flag's drag and waves (docs/aero.md).
+const PRESSURE_SMOOTHING: f32 = 0.25;
+
+/// Most linearisations of the yarns per sweep.
+const MOST_LINEARISATIONS: usize = 4;
 
 impl ParticleCloth {
-    pub(super) fn substep(&mut self, h: f32, gravity: Vec3) {
+    /// One substep of `h` (after [`ParticleCloth::loads`]); returns the largest relative
+    /// stretch of a yarn edge it left.
+    pub(super) fn substep(&mut self, h: f32, gravity: Vec3) -> f32 {
         let m = self.node_mass;
         self.previous.copy_from_slice(&self.positions);
+        // Gravity (its share along n moving m + m_a) and skin friction (implicit, along the
+        // sheet); the normal velocity relative to the air before the pressure.
         for i in 0..self.positions.len() {
+            let (n, u) = (self.normals[i], self.wind[i]);
             if self.inverse_mass[i] == 0.0 {
-                // Held: the air's push on it goes into the pin (and into the force).
-                let (u, n) = (self.wind[i], self.normals[i]);
-                let held = self.lift[i] + n * (self.drag[i] * u.dot(n));
-                let held = held + self.friction[i] * (u - n * u.dot(n));
-                if held.is_finite() {
-                    self.force += h * held;
-                }
-                self.velocities[i] = Vec3::ZERO;
+                self.relative[i] = -u.dot(n);
+                self.reach[i] = 0.0;
                 continue;
             }
-            let (k, f, n) = (self.drag[i], self.friction[i], self.normals[i]);
-            // Lift may turn the node's relative velocity by at most 1/4 rad per substep: a
-            // limiter that only binds when the substep cap is reached (gales, huge steps).
-            let mut lift = self.lift[i] / m;
-            let most = 0.25 * (self.velocities[i] - self.wind[i]).length() / h;
-            if lift.length() > most {
-                lift = lift.normalize_or_zero() * most;
+            let (c, m_a) = (self.friction[i], self.added_mass[i]);
+            let v = self.velocities[i];
+            let (v_n, g_n, u_n) = (v.dot(n), gravity.dot(n), u.dot(n));
+            let (v_t, g_t, u_t) = (v - n * v_n, gravity - n * g_n, u - n * u_n);
+            let along = (m * (v_t + h * g_t) + h * c * u_t) / (m + h * c);
+            let normal = v_n + h * g_n * m / (m + m_a);
+            self.velocities[i] = along + n * normal;
+            self.relative[i] = normal - u_n;
+            self.reach[i] = h / (m + m_a);
+        }
+        let loads = Loads {
+            lift: &self.lift_rate,
+            drag: &self.drag_rate,
+            relative: &self.relative,
+            reach: &self.reach,
+        };
+        let screen = self.screen();
+        smoothed_pressure(
+            loads,
+            &screen,
+            &mut self.pressure_scratch,
+            &mut self.pressure,
+        );
+        for i in 0..self.positions.len() {
+            let (n, u, p) = (self.normals[i], self.wind[i], self.pressure[i]);
+            let c = self.friction[i];
+            let u_t = u - n * u.dot(n);
+            let v = self.velocities[i] - n * (self.reach[i] * p);
+            let pinned = self.inverse_mass[i] == 0.0;
+            // A held node's push goes into the pin (and into the force).
+            let v_t = if pinned { Vec3::ZERO } else { v - n * v.dot(n) };
+            let force = -n * p + c * (u_t - v_t);
+            if force.is_finite() {
+                self.force += h * force;
             }
-            // Across the sheet a node moves its added mass of air too: every force's share
-            // along the normal accelerates m + m_a. Implicit: pressure drag along the normal,
-            // skin friction along the sheet.
-            let before = self.velocities[i].dot(n);
-            let v = self.velocities[i] + h * (gravity + lift);
-            let u = self.wind[i];
-            let (v_n, u_n) = (v.dot(n), u.dot(n));
-            let inertia = m + self.added_mass;
-            let carried = before + (v_n - before) * (m / inertia);
-            let normal = (carried + h * k * u_n / inertia) / (1.0 + h * k / inertia);
-            let (v_t, u_t) = (v - n * v_n, u - n * u_n);
-            let along = (v_t + h * f * u_t / m) / (1.0 + h * f / m);
-            let v = along + n * normal;
-            if v.is_finite() {
-                self.velocities[i] = v;
-                self.force += h * (m * lift + n * (k * (u_n - normal)) + f * (u_t - along));
+            self.velocities[i] = if pinned || !v.is_finite() {
+                Vec3::ZERO
             } else {
-                self.velocities[i] = Vec3::ZERO;
-            }
+                v
+            };
             self.positions[i] += h * self.velocities[i];
         }
-        // XPBD: λ per constraint starts at zero each substep.
-        self.lambdas.clear();
-        self.lambdas.resize(self.constraints.len(), 0.0);
-        // At least `iterations` sweeps, more (to the cap) while a stretch edge is still more
-        // than STRETCH_TOLERANCE off its length: a gale's loads need them, a breeze's do not.
-        let fewest = self.iterations.clamp(1, ParticleCloth::MAX_ITERATIONS);
-        for sweep in 0..ParticleCloth::MAX_ITERATIONS {
-            let mut worst = 0.0f32;
-            for (lambda, &(a, b, rest, compliance)) in
-                self.lambdas.iter_mut().zip(&self.constraints)
-            {
-                let (a, b) = (a as usize, b as usize);
-                let (wa, wb) = (self.inverse_mass[a], self.inverse_mass[b]);
-                let delta = self.positions[a] - self.positions[b];
-                let length = delta.length();
-                if wa + wb == 0.0 || length <= 1e-12 || !length.is_finite() {
-                    continue;
-                }
-                if compliance == 0.0 {
-                    worst = worst.max((length - rest).abs() / rest);
-                }
-                let alpha = compliance / (h * h);
-                let dl = (-(length - rest) - alpha * *lambda) / (wa + wb + alpha);
-                *lambda += dl;
-                let n = delta / length;
-                self.positions[a] += wa * dl * n;
-                self.positions[b] -= wb * dl * n;
-            }
-            if sweep + 1 >= fewest && (worst <= STRETCH_TOLERANCE || worst.is_nan()) {
-                break;
-            }
-        }
-        for &(node, pin, rest) in &self.tethers {
-            let (node, pin) = (node as usize, pin as usize);
-            let delta = self.positions[node] - self.positions[pin];
-            let length = delta.length();
-            if length > rest && length.is_finite() {
-                self.positions[node] = self.positions[pin] + delta * (rest / length);
-            }
-        }
+        let strain = self.project(h);
         for ((v, p), q) in self
             .velocities
             .iter_mut()
@@ -99,5 +83,79 @@ impl ParticleCloth {
         {
             *v = (*p - *q) / h;
         }
+        self.turn_normals();
+        strain
+    }
+
+    /// The pressure's filter over [`PRESSURE_SMOOTHING`] of the smaller side: no flux past the
+    /// ends of the yarns from the pins, falling to zero past the sheet's sides.
+    fn screen(&self) -> Screen {
+        let length = PRESSURE_SMOOTHING * self.grid.width.min(self.grid.height);
+        let (free_rows, free_columns) = match self.pinning {
+            Pinning::PoleColumn => ((false, false), (true, true)),
+            Pinning::TopRow => ((true, true), (false, false)),
+        };
+        Screen {
+            rows: self.grid.rows,
+            columns: self.grid.columns,
+            along_rows: (length / self.grid.segment()).powi(2),
+            along_columns: (length / self.grid.row_spacing()).powi(2),
+            free_rows,
+            free_columns,
+        }
+    }
+
+    /// The constraints, [`ParticleCloth::iterations`] sweeps: bending, shear, then the yarns and
+    /// the attachments, linearised again while an edge is more than [`STRETCH_TOLERANCE`] off
+    /// its length. Returns the largest relative stretch left.
+    fn project(&mut self, h: f32) -> f32 {
+        let inertia = Inertia {
+            inverse_mass: &self.inverse_mass,
+            normals: &self.normals,
+            beta: &self.beta,
+        };
+        let x = &mut self.positions;
+        self.shear_lambdas.fill(0.0);
+        self.bend_lambdas.fill(Vec3::ZERO);
+        let mut strain = 0.0;
+        for _ in 0..self.iterations.clamp(1, ParticleCloth::MAX_ITERATIONS) {
+            project_bending(x, inertia, &self.bends, &mut self.bend_lambdas, h);
+            project_distances(x, inertia, &self.shear, &mut self.shear_lambdas, h);
+            for _ in 0..MOST_LINEARISATIONS {
+                self.yarns.project(x, inertia);
+                project_tethers(x, inertia, &self.tethers);
+                strain = self.yarns.max_strain(x);
+                if strain <= STRETCH_TOLERANCE {
+                    break;
+                }
+            }
+        }
+        strain
+    }
+
+    /// Each node's normal from the moved positions, its velocity along the new normal set so
+    /// that ½ m |v|² + ½ m_a (v · n)² is what it was with the normal its substep used.
+    fn turn_normals(&mut self) {
+        let mut fresh = std::mem::take(&mut self.fresh_normals);
+        self.normals_into(&mut fresh);
+        let m = self.node_mass;
+        for ((v, (old, new)), (w, m_a)) in self
+            .velocities
+            .iter_mut()
+            .zip(self.normals.iter().zip(&fresh))
+            .zip(self.inverse_mass.iter().zip(&self.added_mass))
+        {
+            if *w == 0.0 || *m_a == 0.0 {
+                continue;
+            }
+            let (was, is) = (v.dot(*old), v.dot(*new));
+            let size = ((m * is * is + m_a * was * was) / (m + m_a)).sqrt();
+            let sign = if is != 0.0 { is.signum() } else { was.signum() };
+            let turned = *v + *new * (sign * size - is);
+            if turned.is_finite() {
+                *v = turned;
+            }
+        }
+        self.fresh_normals = std::mem::replace(&mut self.normals, fresh);
     }
 }

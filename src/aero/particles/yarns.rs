@@ -1,0 +1,285 @@
+//! Inextensible yarns: every edge along the rows and the columns kept at its rest length at once.
+//!
+//! Linearised at the predicted positions, the edges' multipliers solve (J W Jᵀ) Δλ = −C, J the
+//! edges' gradients and W the nodes' inverse inertia, then Δx = W Jᵀ Δλ. The system is solved
+//! by conjugate gradients preconditioned with its own grid lines (each row's and each column's
+//! edges form a tridiagonal block, factorised once by Thomas' algorithm): exact for an unsheared
+//! grid, whose rows and columns do not couple, and a few iterations where shear couples them.
+
+use bevy::math::Vec3;
+
+use super::constraints::Inertia;
+
+/// What [`Yarns::gather`] spreads to the nodes.
+#[derive(Clone, Copy)]
+enum Source {
+    P,
+    Lambda,
+}
+
+/// Σ a b, in f64 sums of f32 products taken eight at a time.
+fn dot(a: &[f32], b: &[f32]) -> f64 {
+    let mut sums = [0.0f32; 8];
+    let (chunks_a, chunks_b) = (a.chunks_exact(8), b.chunks_exact(8));
+    let tail: f64 = chunks_a
+        .remainder()
+        .iter()
+        .zip(chunks_b.remainder())
+        .map(|(x, y)| f64::from(x * y))
+        .sum();
+    for (x, y) in chunks_a.zip(chunks_b) {
+        for k in 0..8 {
+            sums[k] += x[k] * y[k];
+        }
+    }
+    tail + sums.iter().map(|s| f64::from(*s)).sum::<f64>()
+}
+
+/// Conjugate-gradient iterations per projection, at most.
+const MOST_ITERATIONS: usize = 12;
+/// The iterations stop once the residual has fallen by this factor (in the preconditioned
+/// norm): the part of the constraints left unsolved turns into velocity at the next substep,
+/// so it is made small against the substep's own correction, not against the edge.
+const TOLERANCE: f64 = 1e-2;
+
+/// The edges of a `rows × columns` grid: along each row (row by row), then along each column
+/// (column by column), with their rest lengths and the solver's work space.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Yarns {
+    rows: usize,
+    columns: usize,
+    /// Each edge's nodes, and the two families of equal lines lying one after another (the
+    /// rows, the columns) as (first edge, edges per line, lines).
+    ends: Vec<(u32, u32)>,
+    families: [(u32, u32, u32); 2],
+    rest: Vec<f32>,
+    direction: Vec<Vec3>,
+    /// Each line's tridiagonal block: the diagonal, the coupling to the line's next edge, and
+    /// their Thomas factors (1 / pivot, the upper factor).
+    diagonal: Vec<f32>,
+    off: Vec<f32>,
+    inverse_pivot: Vec<f32>,
+    upper: Vec<f32>,
+    lambda: Vec<f32>,
+    r: Vec<f32>,
+    z: Vec<f32>,
+    p: Vec<f32>,
+    q: Vec<f32>,
+    push: Vec<Vec3>,
+}
+
+impl Yarns {
+    /// The yarns of a `rows × columns` grid at `positions`, their rest lengths.
+    pub(super) fn new(rows: usize, columns: usize, positions: &[Vec3]) -> Self {
+        let mut ends = Vec::new();
+        for (count, stride, lanes, step) in
+            [(columns, 1, rows, columns), (rows, columns, columns, 1)]
+        {
+            for lane in 0..lanes {
+                let first = lane * step;
+                ends.extend((0..count - 1).map(|j| {
+                    let a = first + j * stride;
+                    (a as u32, (a + stride) as u32)
+                }));
+            }
+        }
+        let rest: Vec<f32> = ends
+            .iter()
+            .map(|&(a, b)| positions[a as usize].distance(positions[b as usize]))
+            .collect();
+        let count = ends.len();
+        let families = [
+            (0, (columns - 1) as u32, rows as u32),
+            (
+                (rows * (columns - 1)) as u32,
+                (rows - 1) as u32,
+                columns as u32,
+            ),
+        ];
+        Self {
+            rows,
+            columns,
+            ends,
+            families,
+            rest,
+            direction: vec![Vec3::ZERO; count],
+            diagonal: vec![0.0; count],
+            off: vec![0.0; count],
+            inverse_pivot: vec![0.0; count],
+            upper: vec![0.0; count],
+            lambda: vec![0.0; count],
+            r: vec![0.0; count],
+            z: vec![0.0; count],
+            p: vec![0.0; count],
+            q: vec![0.0; count],
+            push: vec![Vec3::ZERO; rows * columns],
+        }
+    }
+
+    /// Largest |length / rest − 1| over the edges.
+    pub(super) fn max_strain(&self, x: &[Vec3]) -> f32 {
+        self.ends
+            .iter()
+            .zip(&self.rest)
+            .map(|(&(a, b), rest)| (x[a as usize].distance(x[b as usize]) / rest - 1.0).abs())
+            .fold(0.0, f32::max)
+    }
+
+    /// Projects `x` onto the yarns' rest lengths (one linearisation).
+    pub(super) fn project(&mut self, x: &mut [Vec3], inertia: Inertia) {
+        let count = self.rest.len();
+        for e in 0..count {
+            let (a, b) = (self.ends[e].0 as usize, self.ends[e].1 as usize);
+            let delta = x[b] - x[a];
+            let length = delta.length();
+            let d = delta * (1.0 / length);
+            let diagonal = inertia.product(a, d, d) + inertia.product(b, d, d);
+            if length > 0.0 && diagonal > 0.0 && diagonal.is_finite() && d.is_finite() {
+                self.direction[e] = d;
+                self.diagonal[e] = diagonal;
+                self.r[e] = self.rest[e] - length;
+            } else {
+                // Both ends pinned, or a degenerate edge: left as it is.
+                self.direction[e] = Vec3::ZERO;
+                self.diagonal[e] = 1.0;
+                self.r[e] = 0.0;
+            }
+        }
+        // The lines' blocks (a line's last edge couples to nothing) and their factors.
+        for &(first, length, count) in &self.families {
+            let (first, length) = (first as usize, length as usize);
+            for line in 0..count as usize {
+                let last = first + (line + 1) * length - 1;
+                for j in first + line * length..last {
+                    let shared = self.ends[j].1 as usize;
+                    self.off[j] =
+                        -inertia.product(shared, self.direction[j], self.direction[j + 1]);
+                }
+                self.off[last] = 0.0;
+            }
+        }
+        for &(first, length, count) in &self.families {
+            let (first, length, count) = (first as usize, length as usize, count as usize);
+            for j in 0..length {
+                for line in 0..count {
+                    let i = first + line * length + j;
+                    let below = if j > 0 {
+                        self.off[i - 1] * self.upper[i - 1]
+                    } else {
+                        0.0
+                    };
+                    let pivot = self.diagonal[i] - below;
+                    self.inverse_pivot[i] = 1.0 / pivot;
+                    self.upper[i] = self.off[i] / pivot;
+                }
+            }
+        }
+        self.solve(inertia);
+        // Δx = W Jᵀ λ.
+        self.gather(inertia, Source::Lambda);
+        for (x, dx) in x.iter_mut().zip(&self.push) {
+            if dx.is_finite() {
+                *x += *dx;
+            }
+        }
+    }
+
+    /// λ ≈ A⁻¹ r, A = J W Jᵀ, by conjugate gradients from zero (r is overwritten; see
+    /// [`TOLERANCE`]).
+    fn solve(&mut self, inertia: Inertia) {
+        let count = self.rest.len();
+        self.lambda.fill(0.0);
+        self.precondition();
+        self.p.copy_from_slice(&self.z);
+        let mut rz = dot(&self.r, &self.z);
+        let enough = rz * TOLERANCE * TOLERANCE;
+        for _ in 0..MOST_ITERATIONS {
+            if !(rz > enough && rz.is_finite()) {
+                break;
+            }
+            self.multiply(inertia);
+            let pq = dot(&self.p, &self.q);
+            if !(pq > 0.0 && pq.is_finite()) {
+                break;
+            }
+            let alpha = (rz / pq) as f32;
+            for e in 0..count {
+                self.lambda[e] += alpha * self.p[e];
+                self.r[e] -= alpha * self.q[e];
+            }
+            self.precondition();
+            let next = dot(&self.r, &self.z);
+            let beta = (next / rz) as f32;
+            rz = next;
+            for e in 0..count {
+                self.p[e] = self.z[e] + beta * self.p[e];
+            }
+        }
+    }
+
+    /// z = P⁻¹ r, P the lines' blocks: each family's lines (the rows, the columns) swept side by
+    /// side, so that their recurrences run at once.
+    fn precondition(&mut self) {
+        for &(first, length, count) in &self.families {
+            let (first, length, count) = (first as usize, length as usize, count as usize);
+            let at = |line: usize, j: usize| first + line * length + j;
+            for line in 0..count {
+                let i = at(line, 0);
+                self.z[i] = self.r[i] * self.inverse_pivot[i];
+            }
+            for j in 1..length {
+                for line in 0..count {
+                    let i = at(line, j);
+                    self.z[i] =
+                        (self.r[i] - self.off[i - 1] * self.z[i - 1]) * self.inverse_pivot[i];
+                }
+            }
+            for j in (0..length - 1).rev() {
+                for line in 0..count {
+                    let i = at(line, j);
+                    self.z[i] -= self.upper[i] * self.z[i + 1];
+                }
+            }
+        }
+    }
+
+    /// q = J W Jᵀ p.
+    fn multiply(&mut self, inertia: Inertia) {
+        self.gather(inertia, Source::P);
+        for (e, &(a, b)) in self.ends.iter().enumerate() {
+            self.q[e] = self.direction[e].dot(self.push[b as usize] - self.push[a as usize]);
+        }
+    }
+
+    /// push = W Jᵀ p (or λ): each node's impulses from its (at most four) edges, gathered.
+    fn gather(&mut self, inertia: Inertia, source: Source) {
+        let (rows, columns) = (self.rows, self.columns);
+        let row_edges = rows * (columns - 1);
+        let values = match source {
+            Source::P => &self.p,
+            Source::Lambda => &self.lambda,
+        };
+        let d = &self.direction;
+        for k in 0..rows {
+            for j in 0..columns {
+                let mut f = Vec3::ZERO;
+                let row = k * (columns - 1) + j;
+                if j > 0 {
+                    f += d[row - 1] * values[row - 1];
+                }
+                if j + 1 < columns {
+                    f -= d[row] * values[row];
+                }
+                let column = row_edges + j * (rows - 1) + k;
+                if k > 0 {
+                    f += d[column - 1] * values[column - 1];
+                }
+                if k + 1 < rows {
+                    f -= d[column] * values[column];
+                }
+                let i = k * columns + j;
+                self.push[i] = inertia.apply(i, f);
+            }
+        }
+    }
+}
