@@ -21,9 +21,9 @@ pub fn report(r: &mut Report) {
         "Same object, same wind (a uniform 3 m/s breeze). The procedural leaf is a \
          `FallingObject`'s path (phase diagram, Markov chain, database); the physical one a \
          `RigidPlate` of 2 × 2 faces with lift and drag. The procedural flag is the P-type \
-         descriptor cloth (advance and rebuild); the physical one the XPBD particle cloth with \
-         per-triangle lift and drag. The wind sampler is compared with `noise::Fbm<Perlin>` (4 \
-         octaves, 3 components) at the same points.",
+         descriptor cloth (advance and rebuild); the physical one the particle cloth (1 ms \
+         substeps, the face law's pressure along each node's normal). The wind sampler is \
+         compared with `noise::Fbm<Perlin>` (4 octaves, 3 components) at the same points.",
     );
     let n = if r.quick { 100 } else { 20_000 };
     let breeze = Vec3::new(3.0, 0.0, 0.0);
@@ -86,7 +86,7 @@ pub fn report(r: &mut Report) {
     row(
         "flag 24×16 (P-descriptor)",
         procedural,
-        "particle cloth (XPBD)",
+        "particle cloth",
         physical,
     );
 
