@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A newcomer's game, as CI checks it: a fresh cargo project with `bevy = "0.19.1"` (Bevy's
+"""A newcomer's game, as CI checks it: a fresh cargo project with the README's `[dependencies]` (Bevy's
 default features) and this crate as a path dependency, whose `main.rs` is the README's quick
 start, built, run under Xvfb and Mesa's lavapipe, and photographed.
 
@@ -28,18 +28,31 @@ def quick_start():
     return re.search(r"```rust[^\n]*\n(.*?)```", section, re.S).group(1)
 
 
+def install_lines():
+    """The README's `[dependencies]` block under '## Install': Bevy's line as written, and this
+    crate's with the clone's own path (the README's is the folder next to a game)."""
+    text = open(os.path.join(ROOT, "README.md")).read()
+    section = text[text.index("## Install"):]
+    block = re.search(r"```toml\n(.*?)```", section, re.S).group(1)
+    bevy = re.search(r"^bevy = .*$", block, re.M).group(0)
+    ours = re.search(r"^bevy_windfall = \{ path = \"[^\"]+\" \}$", block, re.M)
+    assert ours, "the README's install block depends on bevy_windfall by path"
+    return bevy, f'bevy_windfall = {{ path = "{ROOT}" }}'
+
+
 def write_project():
     os.makedirs(os.path.join(PROJECT, "src"), exist_ok=True)
     # The same dev profile as this crate's, so that the shared target directory reuses what it
     # can (a newcomer's project would build with cargo's defaults; only the build time differs).
+    bevy, ours = install_lines()
     manifest = f"""[package]
 name = "newcomer"
 version = "0.1.0"
 edition = "2024"
 
 [dependencies]
-bevy = "0.19.1"
-bevy_windfall = {{ path = "{ROOT}" }}
+{bevy}
+{ours}
 
 [profile.dev.package."*"]
 debug = false
@@ -112,7 +125,7 @@ def shares(rgb, width):
 def main():
     out = sys.argv[1]
     write_project()
-    subprocess.run(["cargo", "build", "--manifest-path", os.path.join(PROJECT, "Cargo.toml")],
+    subprocess.run(["cargo", "build", "--ignore-rust-version", "--manifest-path", os.path.join(PROJECT, "Cargo.toml")],
                    check=True, env={**os.environ, "CARGO_TARGET_DIR": os.path.join(ROOT, "target")})
     fb = os.path.join(PROJECT, "fb")
     os.makedirs(fb, exist_ok=True)

@@ -1,6 +1,6 @@
 //! Grass that sways on the GPU in the very wind that carries the leaves: 60 000 blades in one
 //! mesh (one draw call), bent vertex by vertex by a `WindSwayMaterial`, whose vertex shader
-//! samples the `WindField` that `WindfallPlugins` uploads each frame (the WGSL module
+//! samples the `WindField` that `WindfallPlugins` uploads each frame (the WESL module
 //! `bevy_windfall::wind`). Gusts cross the meadow as waves of bending grass.
 //!
 //! `cargo run --example grass`

@@ -94,7 +94,7 @@
 //! [`WindField::ease_to`](wind::WindField::ease_to) builds a storm up or veers the wind without a
 //! jump; [`WindConfig::beaufort`](wind::WindConfig::beaufort) gives the wind of a Beaufort force.
 //!
-//! On the GPU (feature `render`): `render::WindGpuPlugin` uploads the field, and the WGSL module
+//! On the GPU (feature `render`): `render::WindGpuPlugin` uploads the field, and the WESL module
 //! `bevy_windfall::wind` samples it exactly as [`WindField::velocity_at`](wind::WindField::velocity_at)
 //! does (sources and shelters included), so grass and foliage (`render::WindSway`, a material
 //! extension) sway in the same gusts that carry the leaves.
@@ -206,12 +206,12 @@
 //!
 //! | feature | adds |
 //! |---|---|
-//! | `render` (default) | drawing: default looks, leaf clouds in one draw call, the wind on the GPU (`render`: the WGSL module `bevy_windfall::wind`, the `WindSway` material); nothing in an app without Bevy's renderer |
+//! | `render` (default) | drawing: default looks, leaf clouds in one draw call, the wind on the GPU (`render`: the WESL module `bevy_windfall::wind`, the `WindSway` material); nothing in an app without Bevy's renderer |
 //! | *(no default features)* | everything above, headless; Bevy with `default-features = false` |
 //! | `gizmos` | `WindfallDebugPlugin`: wind arrows, fall trails, cloth yarns |
-//! | `egui` | `inspector::WindfallInspectorPlugin`, a tuning panel (bevy_egui 0.42) |
+//! | `egui` | `inspector::WindfallInspectorPlugin`, a tuning panel (bevy_egui 0.43) |
 //! | `serde` | `Serialize`/`Deserialize` for the wind settings and [`WindSnapshot`](wind::WindSnapshot) |
-//! | `avian` | `AvianAero` and `AvianAeroPlugin` (in the group) for avian3d 0.7 |
+//! | `avian` | `AvianAero` and `AvianAeroPlugin` (in the group) for avian3d 0.8 |
 //!
 //! # FAQ
 //!

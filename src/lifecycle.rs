@@ -209,7 +209,7 @@ pub(crate) fn observe<C: Described>(app: &mut bevy::app::App) {
 /// for the description it refused, so it goes with the description (as [`LodInvalid`] does).
 ///
 /// [`LodInvalid`]: crate::lod::LodInvalid
-fn forget_on_remove<C: Described>(event: On<Remove, C>, mut commands: Commands) {
+fn forget_on_remove<C: Described>(event: On<Remove<C>>, mut commands: Commands) {
     commands
         .entity(event.entity)
         .try_remove::<(C::Invalid, SetUpFor<C>)>();
@@ -217,7 +217,7 @@ fn forget_on_remove<C: Described>(event: On<Remove, C>, mut commands: Commands) 
 
 /// The observer that sets `C` up the moment it is inserted (in the frame it was spawned).
 fn set_up_on_insert<C: Described>(
-    event: On<Insert, C>,
+    event: On<Insert<C>>,
     mut commands: Commands,
     mut described: Query<Inserted<C>>,
     context: StaticSystemParam<C::Context>,

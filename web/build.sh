@@ -52,7 +52,7 @@ fi
 # WebAssembly SIMD (simd128) for the leaves' lane step: every current browser has it.
 export CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS="${CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS:-} -C target-feature=+simd128"
 features="render,egui,bevy/web,bevy/$backend"
-cargo build --locked --profile "$profile" --target wasm32-unknown-unknown --example showcase \
+cargo build --locked --ignore-rust-version --profile "$profile" --target wasm32-unknown-unknown --example showcase \
     --features "$features"
 target=${CARGO_TARGET_DIR:-target}
 out=target/web/$backend

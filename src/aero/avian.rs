@@ -166,8 +166,8 @@ fn apply_aero(
     let wind = wind.as_deref();
     let air = |p: Vec3| wind.map_or(Vec3::ZERO, |w| w.velocity(p));
     for (aero, mut forces, com, mass) in &mut bodies {
-        let position = forces.position().0;
-        let rotation = forces.rotation().0;
+        let position = forces.position();
+        let rotation = forces.rotation();
         let (v, w) = (forces.linear_velocity(), forces.angular_velocity());
         let centre = position + rotation * com.0;
         let c = &aero.coefficients;

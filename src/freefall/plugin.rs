@@ -134,7 +134,7 @@ fn step_objects(
 
 /// A [`FallingObject`] removed (or its entity despawned) takes its fall with it.
 fn forget_fall(
-    event: On<Remove, FallingObject>,
+    event: On<Remove<FallingObject>>,
     store: Option<ResMut<FallStore>>,
     mut states: Query<&mut FallState>,
 ) {

@@ -3,7 +3,7 @@
 //!
 //! The mesh holds `count` copies of the leaf's outline at the origin, each vertex tagged with
 //! its leaf's index (the second UV set) and coloured from the cloud's [`LeafCloudLook`]; the
-//! vertex shader (`cloud.wgsl`) moves each copy to its leaf's pose, which the plugin writes into
+//! vertex shader (`cloud.wesl`) moves each copy to its leaf's pose, which the plugin writes into
 //! a [`ShaderBuffer`] once per frame (32 bytes a leaf, in place), or where the device has no
 //! storage buffers ([`GpuLayout::Texture`]) into an RGBA32F [`Image`], two texels a leaf. There is one entity, one mesh
 //! and one material per cloud, and nothing per leaf on the CPU but the pose.
@@ -27,8 +27,8 @@ use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::render::render_asset::RenderAssets;
 use bevy::render::render_resource::{
-    AsBindGroup, AsBindGroupError, BindGroupLayout, BindGroupLayoutEntry, BindingResources, Face,
-    ShaderStages, UnpreparedBindGroup,
+    AsBindGroup, AsBindGroupError, BindGroupBuilder, BindGroupLayout, BindGroupLayoutEntry, Face,
+    ShaderStages,
 };
 use bevy::render::renderer::RenderDevice;
 use bevy::render::storage::{GpuShaderBuffer, ShaderBuffer};
@@ -36,7 +36,7 @@ use bevy::render::texture::GpuImage;
 use bevy::shader::ShaderRef;
 
 use super::GpuLayout;
-use super::layout::{bound_buffer, bound_texture, record_texture, texture_width};
+use super::layout::{bound_buffer, bound_texture, push_bindings, record_texture, texture_width};
 
 use crate::freefall::cloud::LeafPose;
 use crate::freefall::{
@@ -75,20 +75,20 @@ impl AsBindGroup for CloudPoses {
 
     fn bind_group_data(&self) -> Self::Data {}
 
-    fn unprepared_bind_group(
+    fn build_bind_group(
         &self,
         _layout: &BindGroupLayout,
         _device: &RenderDevice,
         (images, buffers): &mut SystemParamItem<'_, '_, Self::Param>,
         _force_no_bindless: bool,
-    ) -> Result<UnpreparedBindGroup, AsBindGroupError> {
+        output: &mut BindGroupBuilder,
+    ) -> Result<(), AsBindGroupError> {
         let poses = match self.layout {
             GpuLayout::Storage => bound_buffer(buffers, &self.poses)?,
             GpuLayout::Texture => bound_texture(images, &self.pose_texture)?,
         };
-        Ok(UnpreparedBindGroup {
-            bindings: BindingResources(vec![(103, poses)]),
-        })
+        push_bindings(output, [(103, poses)]);
+        Ok(())
     }
 
     fn bind_group_layout_entries(
@@ -101,7 +101,7 @@ impl AsBindGroup for CloudPoses {
 
 impl MaterialExtension for CloudPoses {
     fn vertex_shader() -> ShaderRef {
-        "embedded://bevy_windfall/render/cloud.wgsl".into()
+        "embedded://bevy_windfall/cloud.wesl".into()
     }
 
     fn enable_shadows() -> bool {
@@ -196,8 +196,7 @@ impl Plugin for LeafCloudRenderPlugin {
         if app.is_plugin_added::<bevy::pbr::MaterialPlugin<LeafCloudMaterial>>() {
             return;
         }
-        bevy::shader::load_shader_library!(app, "math.wgsl");
-        bevy::asset::embedded_asset!(app, "cloud.wgsl");
+        super::embed_shaders(app);
         app.register_type::<LeafCloudLook>()
             .add_plugins(bevy::pbr::MaterialPlugin::<LeafCloudMaterial>::default())
             .add_systems(
@@ -251,7 +250,7 @@ fn attach_visuals(
         let bytes = vec![0; count.max(1) * POSE_BYTES];
         let poses = match layout {
             GpuLayout::Storage => CloudPoses {
-                poses: buffers.add(ShaderBuffer::new(&bytes, RenderAssetUsages::RENDER_WORLD)),
+                poses: buffers.add(ShaderBuffer::new(bytes, RenderAssetUsages::RENDER_WORLD)),
                 pose_texture: Handle::default(),
                 layout,
             },
@@ -304,38 +303,42 @@ fn write_poses(
             continue;
         }
         let poses = &poses[..visual.count];
-        let (data, size) = match visual.poses.layout {
-            GpuLayout::Storage => match buffers.get_mut(&visual.poses.poses) {
-                Some(buffer) => (&mut buffer.into_inner().data, poses.len() * POSE_BYTES),
-                None => continue,
-            },
-            GpuLayout::Texture => match images.get_mut(&visual.poses.pose_texture) {
-                Some(image) => {
-                    let image = image.into_inner();
-                    let size = (image.width() * image.height()) as usize * 16;
-                    (&mut image.data, size)
+        match visual.poses.layout {
+            GpuLayout::Storage => {
+                let Some(mut buffer) = buffers.get_mut(&visual.poses.poses) else {
+                    continue;
+                };
+                // The render world took the last frame's data: the poses go in anew, as many
+                // bytes as the buffer (the GPU buffer is written in place).
+                let words: Vec<f32> = poses.iter().flat_map(pose_words).collect();
+                buffer.data = ShaderBuffer::new(words, RenderAssetUsages::RENDER_WORLD).data;
+            }
+            GpuLayout::Texture => {
+                let Some(image) = images.get_mut(&visual.poses.pose_texture) else {
+                    continue;
+                };
+                let image = image.into_inner();
+                let size = (image.width() * image.height()) as usize * 16;
+                let data = image.data.get_or_insert_with(Vec::new);
+                data.clear();
+                data.reserve(size);
+                for pose in poses {
+                    for v in pose_words(pose) {
+                        data.extend_from_slice(&v.to_le_bytes());
+                    }
                 }
-                None => continue,
-            },
-        };
-        let data = data.get_or_insert_with(Vec::new);
-        data.clear();
-        data.reserve(size);
-        for pose in poses {
-            pack_pose(pose, data);
+                // A texture's last row is padded.
+                data.resize(size, 0);
+            }
         }
-        // A texture's last row is padded.
-        data.resize(size, 0);
     }
 }
 
-/// Appends one pose as 8 little-endian f32: position, scale 1, rotation.
-fn pack_pose(pose: &LeafPose, data: &mut Vec<u8>) {
+/// One pose as 8 f32: position, scale 1, rotation.
+fn pose_words(pose: &LeafPose) -> [f32; 8] {
     let [x, y, z] = pose.position.to_array();
     let [qx, qy, qz, qw] = pose.rotation.to_array();
-    for v in [x, y, z, 1.0, qx, qy, qz, qw] {
-        data.extend_from_slice(&v.to_le_bytes());
-    }
+    [x, y, z, 1.0, qx, qy, qz, qw]
 }
 
 /// How many of `leaves` are drawn.

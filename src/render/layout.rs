@@ -1,8 +1,8 @@
 //! Where the crate's shaders find their data on this device: storage buffers where the device
 //! has them (WebGPU and every native backend), textures and a uniform buffer where it has not
 //! (WebGL2). The choice is made at run time from the device's limits, by the same rule on the
-//! CPU ([`GpuLayout::of`]) and in WGSL (`#if AVAILABLE_STORAGE_BUFFER_BINDINGS >= 4`, a shader
-//! def Bevy sets from the same limit).
+//! CPU ([`GpuLayout::of`]) and in WESL (`@if(AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_6)`, a flag
+//! Bevy sets from the same limit).
 //!
 //! Hand-written rather than derived: `#[derive(AsBindGroup)]` fixes each binding's kind at
 //! compile time, and one build of a game may run on either kind of device (a browser with or
@@ -13,9 +13,9 @@ use bevy::image::Image;
 use bevy::reflect::Reflect;
 use bevy::render::render_asset::RenderAssets;
 use bevy::render::render_resource::{
-    AsBindGroupError, BindGroupLayoutEntry, BindingType, BufferBindingType, Extent3d,
-    OwnedBindingResource, ShaderStages, TextureDimension, TextureFormat, TextureSampleType,
-    TextureViewDimension,
+    AsBindGroupError, BindGroupBuilder, BindGroupLayoutEntry, BindingType, BufferBindingType,
+    Extent3d, OwnedBindingResource, ShaderStages, TextureDimension, TextureFormat,
+    TextureSampleType, TextureViewDimension, UnpreparedBindingResource,
 };
 use bevy::render::renderer::RenderDevice;
 use bevy::render::storage::{GpuShaderBuffer, ShaderBuffer};
@@ -34,10 +34,12 @@ pub enum GpuLayout {
 }
 
 impl GpuLayout {
-    /// Storage buffers a shader stage must offer for [`GpuLayout::Storage`]: the wind's two, a
-    /// cloud's poses and Bevy's own mesh array, all in one vertex stage. The WGSL modules test
-    /// the same number.
-    pub const STORAGE_BUFFERS_NEEDED: u32 = 4;
+    /// Storage buffers a shader stage must offer for [`GpuLayout::Storage`]. A vertex stage
+    /// needs four (the wind's two, a cloud's poses and Bevy's own mesh array); six is the
+    /// smallest count at or above that which Bevy's shader flags test
+    /// (`AVAILABLE_STORAGE_BUFFER_BINDINGS__GE_6`), the flag the WESL modules read. Every
+    /// WebGPU, Vulkan, Metal and DX12 device offers at least eight.
+    pub const STORAGE_BUFFERS_NEEDED: u32 = 6;
 
     /// The layout the shaders compiled for `device` use.
     pub fn of(device: &RenderDevice) -> Self {
@@ -100,6 +102,34 @@ pub(crate) fn bound_buffer(
         .get(handle)
         .map(|b| OwnedBindingResource::Buffer(b.buffer.clone()))
         .ok_or(AsBindGroupError::RetryNextUpdate)
+}
+
+/// Adds `bindings` (as [`WindGpuBuffers::bindings`](super::WindGpuBuffers::bindings) returns
+/// them) to the bind group a hand-written `AsBindGroup::build_bind_group` builds.
+pub(crate) fn push_bindings(
+    output: &mut BindGroupBuilder,
+    bindings: impl IntoIterator<Item = (u32, OwnedBindingResource)>,
+) {
+    for (binding, resource) in bindings {
+        let resource = match resource {
+            OwnedBindingResource::Buffer(buffer) => UnpreparedBindingResource::Buffer(buffer),
+            OwnedBindingResource::ShaderBuffer(handle) => {
+                UnpreparedBindingResource::ShaderBuffer(handle)
+            }
+            OwnedBindingResource::TextureView(dimension, view) => {
+                UnpreparedBindingResource::TextureView(dimension, view)
+            }
+            OwnedBindingResource::Sampler(kind, sampler) => {
+                UnpreparedBindingResource::Sampler(kind, sampler)
+            }
+            OwnedBindingResource::Data(data) => {
+                let start = output.data_buffer.len() as u32;
+                output.data_buffer.extend_from_slice(&data);
+                UnpreparedBindingResource::Data(start..output.data_buffer.len() as u32)
+            }
+        };
+        output.binding_resources.push((binding, resource));
+    }
 }
 
 /// The bound resource of an [`Image`], or "try again" while it is not on the GPU yet.

@@ -1,5 +1,5 @@
 //! Wind on the GPU (feature `render`): the [`WindField`] uploaded as two storage buffers and a
-//! WGSL module, `bevy_windfall::wind`, whose `wind_velocity_at(position, dt)` returns what
+//! WESL module, `bevy_windfall::wind`, whose `wind_velocity_at(position, dt)` returns what
 //! [`WindField::velocity_at`] returns on the CPU for the same field: the same nodes read by the
 //! same multilinear interpolation and wrapping, the same log law (eq. 10, 14), pulse, shelters
 //! and local sources. Grass, foliage and particles then sway in the very gusts that carry the
@@ -18,10 +18,11 @@
 //! one node a texel, rows as wide as the device allows: 2 048 on WebGL2) and the parameters a
 //! uniform buffer of the same bytes;
 //! [`WindGpuBuffers::layout_entries`] and [`WindGpuBuffers::bindings`] bind whichever the device
-//! has, as [`WindSway`] does. In WGSL the module reads either the same way:
+//! has, as [`WindSway`] does. The module is WESL (a game's shader that imports it is a `.wesl`
+//! file) and reads either the same way:
 //!
 //! ```wgsl
-//! #import bevy_windfall::wind::{wind_velocity, wind_velocity_at}
+//! import bevy_windfall::wind::{wind_velocity, wind_velocity_at};
 //!
 //! let here = wind_velocity(world_position);        // at the field's clock
 //! let soon = wind_velocity_at(world_position, 0.5); // half a second of wind time later
@@ -29,7 +30,7 @@
 //!
 //! [`LeafCloudRenderPlugin`] draws every [`LeafCloud`](crate::freefall::LeafCloud) in one draw
 //! call: a mesh of all its leaves whose vertex shader reads each leaf's pose from a storage
-//! buffer, or on WebGL2 a texture (`cloud.wgsl`, binding 103, so a cloud's material may also bind
+//! buffer, or on WebGL2 a texture (`cloud.wesl`, binding 103, so a cloud's material may also bind
 //! the wind at 100 and 101; the sway material's settings are at 102). Helpers the shaders share (a rotation by a
 //! quaternion) are in the module `bevy_windfall::math`.
 //!
@@ -62,12 +63,39 @@ use bevy::render::render_resource::{
 use bevy::render::renderer::RenderDevice;
 use bevy::render::storage::{GpuShaderBuffer, ShaderBuffer};
 use bevy::render::texture::GpuImage;
+use bevy::shader::Shader;
 
 use layout::{bound_buffer, bound_texture, record_texture, texture_width};
 
 use crate::wind::WindField;
 
-/// Uploads the [`WindField`] to the GPU and registers the WGSL module `bevy_windfall::wind`.
+/// The crate's WESL modules, kept loaded: `bevy_windfall::math`, `bevy_windfall::wind` (the one a
+/// game imports), and the sway and leaf-cloud vertex shaders.
+#[derive(Resource)]
+struct ShaderModules(
+    #[allow(dead_code, reason = "held so the modules stay loaded")] Vec<Handle<Shader>>,
+);
+
+/// Embeds the crate's shaders at `embedded://bevy_windfall/NAME.wesl`, so that each is the WESL
+/// module `bevy_windfall::NAME` (the folder `render/` is left out of the path: the wind module's
+/// import path is part of the public contract), and loads them for good. Both plugins that draw
+/// call it; the second call changes nothing.
+fn embed_shaders(app: &mut App) {
+    if app.world().contains_resource::<ShaderModules>() {
+        return;
+    }
+    bevy::asset::embedded_asset!(app, "render", "math.wesl");
+    bevy::asset::embedded_asset!(app, "render", "wind.wesl");
+    bevy::asset::embedded_asset!(app, "render", "sway.wesl");
+    bevy::asset::embedded_asset!(app, "render", "cloud.wesl");
+    let server = app.world().resource::<bevy::asset::AssetServer>();
+    let modules = ["math", "wind", "sway", "cloud"]
+        .map(|name| server.load(format!("embedded://bevy_windfall/{name}.wesl")))
+        .to_vec();
+    app.insert_resource(ShaderModules(modules));
+}
+
+/// Uploads the [`WindField`] to the GPU and registers the WESL module `bevy_windfall::wind`.
 /// [`WindfallPlugins`](struct@crate::WindfallPlugins) adds it (through [`WindfallRenderPlugin`]) in an
 /// app with the renderer; on its own, add it after `DefaultPlugins` and a
 /// [`WindPlugin`](crate::wind::WindPlugin).
@@ -97,7 +125,7 @@ pub struct WindGpuBuffers {
     /// ([`GpuLayout::Texture`]; a placeholder otherwise).
     pub node_texture: Handle<Image>,
     /// The field's per-frame parameters (`wind_params`, binding 101): the struct
-    /// `WindParams` of the WGSL module, as a storage or (textures layout) a uniform buffer.
+    /// `WindParams` of the WESL module, as a storage or (textures layout) a uniform buffer.
     pub params: Handle<ShaderBuffer>,
     /// Which of the above the shaders read on this device.
     pub layout: GpuLayout,
@@ -151,9 +179,7 @@ impl Plugin for WindGpuPlugin {
         if app.world().contains_resource::<WindGpuUploads>() {
             return;
         }
-        bevy::shader::load_shader_library!(app, "math.wgsl");
-        bevy::shader::load_shader_library!(app, "wind.wgsl");
-        bevy::asset::embedded_asset!(app, "sway.wgsl");
+        embed_shaders(app);
         app.init_resource::<WindGpuUploads>()
             .add_plugins(bevy::pbr::MaterialPlugin::<WindSwayMaterial>::default())
             .add_systems(PostUpdate, (upload_wind, refresh_sway_materials).chain());
@@ -175,7 +201,10 @@ impl Plugin for WindGpuPlugin {
         };
         // Placeholders of the right kind until the first upload: one node, empty parameters.
         let mut buffers = world.resource_mut::<Assets<ShaderBuffer>>();
-        let nodes = buffers.add(ShaderBuffer::new(&[0; 12], RenderAssetUsages::RENDER_WORLD));
+        let nodes = buffers.add(ShaderBuffer::new(
+            vec![0u8; 12],
+            RenderAssetUsages::RENDER_WORLD,
+        ));
         let params = buffers.add(params_buffer(&empty_params(), layout));
         let node_texture = world
             .resource_mut::<Assets<Image>>()
@@ -200,11 +229,10 @@ fn empty_params() -> GpuWindParams {
 }
 
 fn params_buffer(params: &GpuWindParams, layout: GpuLayout) -> ShaderBuffer {
-    let mut buffer = ShaderBuffer::default();
+    let mut buffer = ShaderBuffer::new(params.bytes(), RenderAssetUsages::default());
     if layout == GpuLayout::Texture {
-        buffer.buffer_description.usage = BufferUsages::UNIFORM | BufferUsages::COPY_DST;
+        buffer.buffer_usage = BufferUsages::UNIFORM | BufferUsages::COPY_DST;
     }
-    buffer.set_data(params.clone());
     buffer
 }
 
@@ -250,7 +278,7 @@ fn upload_wind(
             GpuLayout::Storage => {
                 let bytes = node_bytes(&field, 3);
                 uploads.node_bytes = bytes.len();
-                let buffer = ShaderBuffer::new(&bytes, RenderAssetUsages::RENDER_WORLD);
+                let buffer = ShaderBuffer::new(bytes, RenderAssetUsages::RENDER_WORLD);
                 buffers.insert(&gpu.nodes, buffer).is_err()
             }
             GpuLayout::Texture => {
@@ -277,7 +305,8 @@ fn upload_wind(
     }
     let params = GpuWindParams::of(&field);
     if let Some(mut buffer) = buffers.get_mut(&gpu.params) {
-        buffer.set_data(params);
-        uploads.param_bytes = buffer.data.as_ref().map_or(0, Vec::len);
+        let bytes = params.bytes();
+        uploads.param_bytes = bytes.len();
+        buffer.data = ShaderBuffer::new(bytes, buffer.asset_usage).data;
     }
 }

@@ -1,4 +1,4 @@
-//! What the GPU needs of a [`WindField`], packed as `wind.wgsl` reads it: the turbulence nodes
+//! What the GPU needs of a [`WindField`], packed as `wind.wesl` reads it: the turbulence nodes
 //! once per field, and every frame the small [`GpuWindParams`] (clock, log-law constants, σ's,
 //! the pattern's travel, the pulse, shelters and local sources).
 //!
@@ -9,6 +9,7 @@
 
 use bevy::math::{DVec2, UVec4, Vec2, Vec3, Vec4};
 use bevy::render::render_resource::ShaderType;
+use bevy::render::render_resource::encase::StorageBuffer;
 
 use crate::wind::{ShelterKind, SourceShape, SpatialMode, TemporalMode, WindField};
 
@@ -17,7 +18,7 @@ use crate::wind::{ShelterKind, SourceShape, SpatialMode, TemporalMode, WindField
 /// size, so bind groups that hold it never go stale.
 pub(crate) const MAX_GPU_LOCALS: usize = 64;
 
-/// One shelter or local source, as `WindLocal` in `wind.wgsl`.
+/// One shelter or local source, as `WindLocal` in `wind.wesl`.
 #[derive(ShaderType, Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct GpuLocal {
     /// World position of the entity.
@@ -45,7 +46,7 @@ pub(crate) struct GpuLocal {
     pub pulse: Vec3,
 }
 
-/// The per-frame parameters of the wind, as `WindParams` in `wind.wgsl`.
+/// The per-frame parameters of the wind, as `WindParams` in `wind.wesl`.
 #[derive(ShaderType, Clone, Debug, PartialEq)]
 pub(crate) struct GpuWindParams {
     /// Nodes along (time, x, y, z); 1 for an axis the field does not have.
@@ -116,6 +117,17 @@ fn quat(q: bevy::math::Quat) -> Vec4 {
 }
 
 impl GpuWindParams {
+    /// The bytes the shader reads: the struct laid out by WGSL's rules (encase's storage
+    /// layout, which a uniform buffer of this struct shares: every member is 16-byte aligned
+    /// where the uniform rules ask it).
+    pub fn bytes(&self) -> Vec<u8> {
+        let mut buffer = StorageBuffer::new(Vec::new());
+        buffer
+            .write(self)
+            .expect("a Vec grows to hold the parameters");
+        buffer.into_inner()
+    }
+
     /// The parameters of `field` at its own clock.
     pub fn of(field: &WindField) -> Self {
         let t0 = field.time_f64();

@@ -13,9 +13,8 @@ use bevy::render::render_asset::RenderAssets;
 use bevy::render::render_resource::binding_types::uniform_buffer;
 use bevy::render::render_resource::encase::UniformBuffer;
 use bevy::render::render_resource::{
-    AsBindGroup, AsBindGroupError, BindGroupLayout, BindGroupLayoutEntry, BindingResources,
+    AsBindGroup, AsBindGroupError, BindGroupBuilder, BindGroupLayout, BindGroupLayoutEntry,
     BufferInitDescriptor, BufferUsages, OwnedBindingResource, ShaderStages, ShaderType,
-    UnpreparedBindGroup,
 };
 use bevy::render::renderer::RenderDevice;
 use bevy::render::storage::GpuShaderBuffer;
@@ -23,6 +22,7 @@ use bevy::render::texture::GpuImage;
 use bevy::shader::ShaderRef;
 
 use super::WindGpuBuffers;
+use super::layout::push_bindings;
 
 /// A [`StandardMaterial`] that sways in the wind: use it like any material,
 /// `MeshMaterial3d(materials.add(WindSwayMaterial { base, extension }))`.
@@ -144,13 +144,14 @@ impl AsBindGroup for WindSway {
 
     fn bind_group_data(&self) -> Self::Data {}
 
-    fn unprepared_bind_group(
+    fn build_bind_group(
         &self,
         _layout: &BindGroupLayout,
         device: &RenderDevice,
         (images, buffers): &mut SystemParamItem<'_, '_, Self::Param>,
         _force_no_bindless: bool,
-    ) -> Result<UnpreparedBindGroup, AsBindGroupError> {
+        output: &mut BindGroupBuilder,
+    ) -> Result<(), AsBindGroupError> {
         let mut sway = UniformBuffer::new(Vec::new());
         sway.write(&self.sway)
             .map_err(|_| AsBindGroupError::RetryNextUpdate)?;
@@ -159,11 +160,10 @@ impl AsBindGroup for WindSway {
             contents: sway.as_ref(),
             usage: BufferUsages::UNIFORM | BufferUsages::COPY_DST,
         });
-        let mut bindings = Vec::from(self.wind.bindings(images, buffers)?);
-        bindings.push((102, OwnedBindingResource::Buffer(sway)));
-        Ok(UnpreparedBindGroup {
-            bindings: BindingResources(bindings),
-        })
+        let wind = self.wind.bindings(images, buffers)?;
+        push_bindings(output, wind);
+        push_bindings(output, [(102, OwnedBindingResource::Buffer(sway))]);
+        Ok(())
     }
 
     fn bind_group_layout_entries(
@@ -178,7 +178,7 @@ impl AsBindGroup for WindSway {
 
 impl MaterialExtension for WindSway {
     fn vertex_shader() -> ShaderRef {
-        "embedded://bevy_windfall/render/sway.wgsl".into()
+        "embedded://bevy_windfall/sway.wesl".into()
     }
 
     fn enable_shadows() -> bool {

@@ -103,7 +103,7 @@ pub(super) struct SourceStart {
 /// A source inserted (again) starts again: a blast fires anew. Its numbers are checked at once
 /// (the transform when it is placed).
 pub(super) fn restart_source(
-    event: On<Insert, WindSource>,
+    event: On<Insert<WindSource>>,
     mut commands: Commands,
     sources: Query<(&WindSource, Option<&WindSourceInvalid>)>,
 ) {
@@ -125,7 +125,7 @@ pub(super) fn restart_source(
 
 /// A shelter's numbers are checked when it is inserted (the transform when it is placed).
 pub(super) fn check_shelter(
-    event: On<Insert, WindShelter>,
+    event: On<Insert<WindShelter>>,
     mut commands: Commands,
     shelters: Query<(&WindShelter, Option<&WindShelterInvalid>)>,
 ) {

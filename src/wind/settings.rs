@@ -122,7 +122,7 @@ pub(super) fn take_in_wind_settings(
 /// rebuild in flight is superseded by it, and the field takes in the app's settings as they
 /// are, if it has taken in none (a new field; a clone or a snapshot's keeps its own).
 pub(super) fn field_inserted(
-    _: On<Insert, WindField>,
+    _: On<Insert<WindField>>,
     rebuild: Option<ResMut<WindRebuild>>,
     settings: Option<Res<WindSettings>>,
     field: Option<ResMut<WindField>>,

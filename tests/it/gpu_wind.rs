@@ -1,5 +1,5 @@
 //! The wind on the GPU equals the wind on the CPU: a compute pass samples `wind_velocity_at`
-//! of the WGSL module `bevy_windfall::wind` at 4096 points spread over the field, its heights
+//! of the WESL module `bevy_windfall::wind` at 4096 points spread over the field, its heights
 //! and ±6 s of wind time, in the four modes (plane and volume, frozen and evolving), with every
 //! kind of local source, a wall and a room, a pulse and an eased wind late in a session; the
 //! results are read back and compared with `WindField::velocity_at`. Two cases run on a device
@@ -35,7 +35,7 @@ use bevy_windfall::wind::{Pulse, WindShelter, WindSource};
 
 const POINTS: usize = 4096;
 const SHADER: &str = r"
-#import bevy_windfall::wind::wind_velocity_at
+import bevy_windfall::wind::wind_velocity_at;
 
 @group(0) @binding(0) var<storage, read> points: array<vec4<f32>>;
 @group(0) @binding(1) var<storage, read_write> velocities: array<vec4<f32>>;
@@ -53,6 +53,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 
 /// The buffers of the test pass, shared with the render world.
 #[derive(Resource, ExtractResource, Clone)]
+#[extract_app(RenderApp)]
 struct Probe {
     shader: Handle<Shader>,
     points: Handle<ShaderBuffer>,
@@ -324,11 +325,11 @@ fn run(case: &Case) -> (f32, f32) {
     let world = app.world_mut();
     let shader = world
         .resource_mut::<Assets<Shader>>()
-        .add(Shader::from_wgsl(SHADER, "gpu_wind_probe.wgsl"));
+        .add(Shader::from_wesl(SHADER, "gpu_wind_probe.wesl"));
     let mut buffers = world.resource_mut::<Assets<ShaderBuffer>>();
     let points_buffer = buffers.add(ShaderBuffer::from(points));
     let mut out = ShaderBuffer::from(vec![Vec4::ZERO; POINTS]);
-    out.buffer_description.usage |= BufferUsages::COPY_SRC;
+    out.buffer_usage |= BufferUsages::COPY_SRC;
     let velocities = buffers.add(out);
     let wind = world.resource::<WindGpuBuffers>().clone();
     assert_eq!(

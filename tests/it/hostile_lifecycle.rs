@@ -52,7 +52,7 @@ struct Inserts(usize);
 
 fn count_inserts<M: Component>(app: &mut App) {
     app.init_resource::<Inserts>()
-        .add_observer(|_: On<Insert, M>, mut n: ResMut<Inserts>| n.0 += 1);
+        .add_observer(|_: On<Insert<M>>, mut n: ResMut<Inserts>| n.0 += 1);
 }
 
 /// Item 1: a new look for a cloud's leaves redraws them; it does not let the cloud go again.

@@ -31,6 +31,7 @@ mod hostile_wind;
 mod lod;
 mod measurements;
 mod physical_flag;
+mod schedule_order;
 mod screenshots;
 mod spectrum;
 mod stability;

@@ -355,9 +355,9 @@ impl<K: Constants> Slot<'_, K> {
     }
 }
 
-/// 3x² − 2x³ on x clamped to [0, 1] (bevy_math's `EaseFunction::SmoothStep`): how a blend and
+/// 3x² − 2x³ on x clamped to [0, 1] (bevy_curve's `EaseFunction::SmoothStep`): how a blend and
 /// the release's residual fade.
 pub(crate) fn smoothstep(x: f32) -> f32 {
-    use bevy::math::curve::{Curve, EaseFunction};
+    use bevy::curve::{Curve, EaseFunction};
     EaseFunction::SmoothStep.sample_clamped(x)
 }
