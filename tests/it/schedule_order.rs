@@ -192,7 +192,10 @@ impl Fnv {
     fn vectors(&mut self, vectors: &[Vec3]) {
         for v in vectors {
             for c in v.to_array() {
-                c.to_bits().to_le_bytes().into_iter().for_each(|b| self.byte(b));
+                c.to_bits()
+                    .to_le_bytes()
+                    .into_iter()
+                    .for_each(|b| self.byte(b));
             }
         }
     }
