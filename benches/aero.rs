@@ -1,7 +1,9 @@
 //! Aero costs: `face_force` over 100 000 faces; one fixed step of a physically driven leaf (a
 //! `RigidPlate` of 2 × 2 faces) against the procedural `FallingObject` leaf in the same wind;
 //! one step of a flag as a P-descriptor `ClothSim` (24 × 16 and 36 × 24 nodes) and as a
-//! `ParticleCloth` (36 × 24 and 72 × 48).
+//! `ParticleCloth` (36 × 24 and 72 × 48); and the yardstick the particle cloth is held to, a
+//! plain position-based game cloth of the same 36 × 24 nodes ([`PlainCloth`], written here so
+//! that it does not move when the crate does), both in an 8 m/s wind.
 //!
 //! Run: `cargo bench --bench aero`. Figures are in the README's Performance section.
 
@@ -144,7 +146,123 @@ fn faces(c: &mut Criterion) {
             },
         );
     }
+    // The yardstick and the particle cloth in the same 8 m/s wind (at 5 m, log law, turbulence).
+    let breeze = WindField::new(WindConfig {
+        reference_speed: 8.0,
+        ..WindConfig::default()
+    })
+    .unwrap();
+    let breeze = |p: Vec3| breeze.velocity(p + Vec3::new(0.0, 5.0, 0.0));
+    let mut plain = PlainCloth::new(36, 24, 1.5, 1.0, 0.15);
+    let mut physical = ParticleCloth::new(
+        grid(24, 36),
+        0.15,
+        AeroCoefficients::default(),
+        Pinning::PoleColumn,
+    )
+    .unwrap();
+    for _ in 0..60 {
+        plain.step(DT, gravity, &breeze);
+        physical.step(DT, gravity, &breeze);
+    }
+    group.bench_function("flag_step_36x24_8ms/plain_position_based", |b| {
+        b.iter(|| {
+            plain.step(DT, gravity, &breeze);
+            black_box(plain.x[0])
+        })
+    });
+    group.bench_function("flag_step_36x24_8ms/physical_particles", |b| {
+        b.iter(|| {
+            physical.step(DT, gravity, &breeze);
+            black_box(physical.positions()[0])
+        })
+    });
     group.finish();
+}
+
+/// A plain position-based cloth as game engines ship it (Müller et al., "Position based
+/// dynamics", 2007): Verlet integration with explicit gravity and a pull toward the wind,
+/// structural links (rows and columns) and shear links (both diagonals of every cell), eight
+/// Gauss–Seidel sweeps a frame, the first column pinned. No added mass, no implicit air.
+struct PlainCloth {
+    x: Vec<Vec3>,
+    previous: Vec<Vec3>,
+    inverse_mass: Vec<f32>,
+    links: Vec<(u32, u32, f32)>,
+    /// The pull toward the wind per node, 1/s (a drag rate: ½ ρ C_D A / m at 1 m/s).
+    pull: f32,
+}
+
+impl PlainCloth {
+    const SWEEPS: usize = 8;
+
+    fn new(columns: usize, rows: usize, width: f32, height: f32, areal_density: f32) -> Self {
+        let (dx, dy) = (width / (columns - 1) as f32, height / (rows - 1) as f32);
+        let x: Vec<Vec3> = (0..rows * columns)
+            .map(|i| Vec3::new((i % columns) as f32 * dx, -((i / columns) as f32) * dy, 0.0))
+            .collect();
+        let inverse_mass = (0..rows * columns)
+            .map(|i| if i % columns == 0 { 0.0 } else { 1.0 })
+            .collect();
+        let mut links = Vec::new();
+        let mut link = |a: usize, b: usize| links.push((a as u32, b as u32, x[a].distance(x[b])));
+        for k in 0..rows {
+            for j in 0..columns {
+                let i = k * columns + j;
+                if j + 1 < columns {
+                    link(i, i + 1);
+                }
+                if k + 1 < rows {
+                    link(i, i + columns);
+                }
+                if j + 1 < columns && k + 1 < rows {
+                    link(i, i + columns + 1);
+                    link(i + 1, i + columns);
+                }
+            }
+        }
+        let node_area = width * height / (rows * columns) as f32;
+        let pull = 0.5 * AeroCoefficients::AIR_DENSITY * node_area / (areal_density * node_area);
+        Self {
+            previous: x.clone(),
+            x,
+            inverse_mass,
+            links,
+            pull,
+        }
+    }
+
+    fn step(&mut self, dt: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
+        for ((x, previous), w) in self
+            .x
+            .iter_mut()
+            .zip(&mut self.previous)
+            .zip(&self.inverse_mass)
+        {
+            if *w == 0.0 {
+                continue;
+            }
+            let v = (*x - *previous) / dt;
+            let relative = wind(*x) - v;
+            let acceleration = gravity + self.pull * relative.length() * relative;
+            *previous = *x;
+            *x += v * dt + acceleration * dt * dt;
+        }
+        for _ in 0..Self::SWEEPS {
+            for &(a, b, rest) in &self.links {
+                let (a, b) = (a as usize, b as usize);
+                let (wa, wb) = (self.inverse_mass[a], self.inverse_mass[b]);
+                let delta = self.x[b] - self.x[a];
+                let length = delta.length();
+                if wa + wb == 0.0 || length == 0.0 {
+                    continue;
+                }
+                let correction = delta * ((length - rest) / (length * (wa + wb)));
+                self.x[a] += wa * correction;
+                self.x[b] -= wb * correction;
+            }
+        }
+    }
 }
 
 #[allow(missing_docs)]

@@ -148,7 +148,8 @@ fn hash_state(world: &mut World) -> u64 {
         .query_filtered::<&Transform, With<AeroBody>>()
         .iter(world)
     {
-        hash.vectors(&[transform.translation, Vec3::from(transform.rotation.xyz())]);
+        let q = transform.rotation;
+        hash.vectors(&[transform.translation, q.xyz(), Vec3::splat(q.w)]);
     }
     hash.0
 }
