@@ -109,7 +109,7 @@ pub fn fingerprint(threads: Option<usize>) -> u64 {
 }
 
 /// FNV-1a, 64 bits: a hash the same on every platform (`std`'s are not promised to be).
-struct Fnv(u64);
+pub struct Fnv(pub u64);
 
 impl Default for Fnv {
     fn default() -> Self {
@@ -118,11 +118,13 @@ impl Default for Fnv {
 }
 
 impl Fnv {
-    fn byte(&mut self, b: u8) {
+    /// Hashes one byte.
+    pub fn byte(&mut self, b: u8) {
         self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3);
     }
 
-    fn vector(&mut self, v: Vec3) {
+    /// Hashes a vector's bits (every NaN alike).
+    pub fn vector(&mut self, v: Vec3) {
         for c in v.to_array() {
             // NaN's payload is not portable: every NaN hashes alike.
             let bits = if c.is_nan() {

@@ -30,7 +30,7 @@ pub use body::{AeroBody, AeroBodyInvalid, AeroState};
 pub use coefficients::AeroCoefficients;
 pub use error::AeroError;
 pub use force::face_force;
-pub use particles::{ParticleCloth, Pinning};
+pub use particles::{ParticleCloth, Pinning, YarnSolves};
 pub use physical_cloth::{PhysicalCloth, PhysicalClothInvalid, PhysicalClothState};
 pub use plate::{Face, PlateState, RigidPlate};
 pub use plugin::AeroPlugin;

@@ -432,6 +432,39 @@ fn physical_flag_hangs_in_still_air_and_streams_in_wind() {
     );
 }
 
+/// A 12 × 18 flag flapping in an 8 m/s breeze for 2 s, and what its yarns' solves report.
+fn yarn_solves_in_a_breeze() -> YarnSolves {
+    let mut cloth = flag(0.15);
+    assert_eq!(cloth.yarn_solves(), YarnSolves::default());
+    let breeze = |_: Vec3| Vec3::new(8.0, 0.0, 0.0);
+    for _ in 0..120 {
+        cloth.step(1.0 / 60.0, G, &breeze);
+    }
+    cloth.yarn_solves()
+}
+
+/// The yarns' solves can be watched: each solve and its iterations are counted, and on so mild
+/// a load no pivot of the lines' blocks needs guarding.
+#[test]
+fn physical_flag_reports_its_yarn_solves() {
+    let solves = yarn_solves_in_a_breeze();
+    // At least one linearisation per millisecond substep.
+    assert!(solves.solves >= 2000, "{solves:?}");
+    assert!(solves.iterations >= solves.solves, "{solves:?}");
+    assert!(solves.unconverged <= solves.solves, "{solves:?}");
+    assert_eq!(solves.guarded_pivots, 0, "{solves:?}");
+    assert!((0.0..=1.0).contains(&solves.last_residual), "{solves:?}");
+}
+
+/// Every yarn solve of a flag in a breeze reaches its tolerance within the iteration limit.
+#[test]
+#[ignore = "not met: 695 of 2000 solves stop at the 12-iteration limit (9.2 iterations a solve \
+            on average), measured with the counters of physical_flag_reports_its_yarn_solves"]
+fn physical_flag_yarn_solves_reach_their_tolerance() {
+    let solves = yarn_solves_in_a_breeze();
+    assert_eq!(solves.unconverged, 0, "{solves:?}");
+}
+
 #[test]
 fn physical_flag_survives_gales_and_huge_steps() {
     for dt in [1.0 / 30.0, 0.25] {

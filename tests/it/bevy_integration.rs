@@ -19,13 +19,13 @@ use bevy_windfall::prelude::*;
 use bevy_windfall::wind::{WindShelter, WindSource};
 use common::{STEP, headless_app_with_meshes, ready};
 
-fn card() -> AeroBody {
+pub(crate) fn card() -> AeroBody {
     AeroBody::new(
         RigidPlate::rectangle(0.085, 0.055, 3e-4, 700.0, AeroCoefficients::default(), 3).unwrap(),
     )
 }
 
-fn small_flag() -> Cloth {
+pub(crate) fn small_flag() -> Cloth {
     Cloth {
         grid: ClothGrid {
             rows: 8,
@@ -37,7 +37,7 @@ fn small_flag() -> Cloth {
     }
 }
 
-fn physical_flag() -> PhysicalCloth {
+pub(crate) fn physical_flag() -> PhysicalCloth {
     PhysicalCloth {
         grid: ClothGrid {
             rows: 6,

@@ -56,7 +56,7 @@ fn same_seed_same_wind_bit_for_bit() {
 }
 
 #[path = "../../examples/common/fingerprint.rs"]
-mod fingerprint;
+pub(crate) mod fingerprint;
 
 /// 1 000 falling objects and a cloud of 2 000 leaves, 600 steps in a gusty wind with a fan
 /// (`examples/common/fingerprint.rs`, the hash the showcase's tour prints in the browser): the

@@ -6,13 +6,15 @@
 
 use bevy::ecs::schedule::ScheduleBuildSettings;
 use bevy::prelude::*;
-use bevy_windfall::aero::{PhysicalCloth, PhysicalClothState, Pinning};
+use bevy_windfall::aero::PhysicalClothState;
 use bevy_windfall::freefall::cloud::LeafCloudState;
 use bevy_windfall::freefall::{FallPreset, LeafCloud};
 use bevy_windfall::prelude::*;
 use bevy_windfall::wind::WindSource;
 
+use crate::bevy_integration::{card, physical_flag, small_flag};
 use crate::common::{headless_app_with_meshes, ready};
+use crate::determinism::fingerprint::Fnv;
 
 /// Fixed steps each run takes (3 s at 60 Hz).
 const STEPS: usize = 180;
@@ -60,34 +62,9 @@ fn run(shuffle_seed: Option<u64>) -> Run {
         },
         ..default()
     });
-    world.spawn((
-        Cloth {
-            grid: ClothGrid {
-                rows: 8,
-                columns: 12,
-                ..default()
-            },
-            params: ClothPreset::FlagFlappingFrozen.params(),
-            ..default()
-        },
-        Transform::from_xyz(3.0, 4.0, 0.0),
-    ));
-    world.spawn((
-        PhysicalCloth {
-            grid: ClothGrid {
-                rows: 6,
-                columns: 9,
-                width: 1.2,
-                height: 0.8,
-            },
-            pinning: Pinning::PoleColumn,
-            ..default()
-        },
-        Transform::from_xyz(6.0, 4.0, 0.0),
-    ));
-    let plate =
-        RigidPlate::rectangle(0.085, 0.055, 3e-4, 700.0, AeroCoefficients::default(), 3).unwrap();
-    world.spawn((AeroBody::new(plate), Transform::from_xyz(-3.0, 12.0, 0.0)));
+    world.spawn((small_flag(), Transform::from_xyz(3.0, 4.0, 0.0)));
+    world.spawn((physical_flag(), Transform::from_xyz(6.0, 4.0, 0.0)));
+    world.spawn((card(), Transform::from_xyz(-3.0, 12.0, 0.0)));
     world.spawn((
         WindSource::fan(8.0, 0.7, 10.0),
         Transform::from_xyz(-12.0, 4.0, 0.0).looking_at(Vec3::new(0.0, 6.0, 0.0), Vec3::Y),
@@ -130,26 +107,29 @@ fn hash_state(world: &mut World) -> u64 {
         .collect();
     falls.sort_by_key(|f| f.0.index_u32());
     for (_, position, drift, landed) in falls {
-        hash.vectors(&[position, drift]);
+        hash_vectors(&mut hash, &[position, drift]);
         hash.byte(u8::from(landed));
     }
     for state in world.query::<&LeafCloudState>().iter(world) {
         for path in state.leaves().into_iter().flat_map(|l| l.paths()) {
-            hash.vectors(&[path.position(), path.drift()]);
+            hash_vectors(&mut hash, &[path.position(), path.drift()]);
         }
     }
     for state in world.query::<&ClothState>().iter(world) {
-        hash.vectors(state.sim.positions());
+        hash_vectors(&mut hash, state.sim.positions());
     }
     for state in world.query::<&PhysicalClothState>().iter(world) {
-        hash.vectors(state.0.positions());
+        hash_vectors(&mut hash, state.0.positions());
     }
     for transform in world
         .query_filtered::<&Transform, With<AeroBody>>()
         .iter(world)
     {
         let q = transform.rotation;
-        hash.vectors(&[transform.translation, q.xyz(), Vec3::splat(q.w)]);
+        hash_vectors(
+            &mut hash,
+            &[transform.translation, q.xyz(), Vec3::splat(q.w)],
+        );
     }
     hash.0
 }
@@ -176,28 +156,8 @@ fn shuffled_schedules_end_on_the_same_bits() {
     );
 }
 
-/// FNV-1a, 64 bits.
-struct Fnv(u64);
-
-impl Default for Fnv {
-    fn default() -> Self {
-        Self(0xcbf2_9ce4_8422_2325)
-    }
-}
-
-impl Fnv {
-    fn byte(&mut self, b: u8) {
-        self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3);
-    }
-
-    fn vectors(&mut self, vectors: &[Vec3]) {
-        for v in vectors {
-            for c in v.to_array() {
-                c.to_bits()
-                    .to_le_bytes()
-                    .into_iter()
-                    .for_each(|b| self.byte(b));
-            }
-        }
+fn hash_vectors(hash: &mut Fnv, vectors: &[Vec3]) {
+    for v in vectors {
+        hash.vector(*v);
     }
 }

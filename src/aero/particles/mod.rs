@@ -11,6 +11,8 @@ mod substep;
 mod yarns;
 use bevy::math::Vec3;
 
+pub use yarns::YarnSolves;
+
 use super::coefficients::AeroCoefficients;
 use super::error::AeroError;
 use crate::cloth::{ClothError, ClothGrid};
@@ -321,6 +323,13 @@ impl ParticleCloth {
     /// Mass of one node, kg.
     pub fn node_mass(&self) -> f32 {
         self.node_mass
+    }
+
+    /// How the yarns' linear solves have gone since the cloth was made: how many, their
+    /// iterations, those stopped at the limit before the tolerance, guarded pivots and the last
+    /// residual.
+    pub fn yarn_solves(&self) -> YarnSolves {
+        self.yarns.solves
     }
 
     /// Largest |length / rest − 1| over the edges along the rows and the columns.

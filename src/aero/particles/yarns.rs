@@ -10,6 +10,27 @@ use bevy::math::Vec3;
 
 use super::constraints::Inertia;
 
+/// How the yarns' solves have gone since the cloth was made: [`ParticleCloth::yarn_solves`](super::ParticleCloth::yarn_solves).
+///
+/// Each projection of the yarns solves one linear system by conjugate gradients, stopping when
+/// the residual has fallen by the tolerance or after a fixed number of iterations; what a
+/// stopped solve leaves is made up at the next linearisation and substep. These counters show
+/// whether that happens, rather than leaving it unseen.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct YarnSolves {
+    /// Projections of the yarns (linearised systems solved).
+    pub solves: u64,
+    /// Conjugate-gradient iterations over all of them.
+    pub iterations: u64,
+    /// Solves stopped at the iteration limit before reaching the tolerance.
+    pub unconverged: u64,
+    /// Pivots of the lines' tridiagonal blocks that were not positive and finite (the edge was
+    /// then preconditioned alone): 0 unless rounding breaks the blocks' positive definiteness.
+    pub guarded_pivots: u64,
+    /// The last solve's residual relative to its start, in the preconditioned norm.
+    pub last_residual: f32,
+}
+
 /// What [`Yarns::gather`] spreads to the nodes.
 #[derive(Clone, Copy)]
 enum Source {
@@ -66,6 +87,7 @@ pub(super) struct Yarns {
     p: Vec<f32>,
     q: Vec<f32>,
     push: Vec<Vec3>,
+    pub(super) solves: YarnSolves,
 }
 
 impl Yarns {
@@ -113,6 +135,7 @@ impl Yarns {
             p: vec![0.0; count],
             q: vec![0.0; count],
             push: vec![Vec3::ZERO; rows * columns],
+            solves: YarnSolves::default(),
         }
     }
 
@@ -169,8 +192,16 @@ impl Yarns {
                         0.0
                     };
                     let pivot = self.diagonal[i] - below;
-                    self.inverse_pivot[i] = 1.0 / pivot;
-                    self.upper[i] = self.off[i] / pivot;
+                    if pivot > 0.0 && pivot.is_finite() {
+                        self.inverse_pivot[i] = 1.0 / pivot;
+                        self.upper[i] = self.off[i] / pivot;
+                    } else {
+                        // Preconditioned alone: its diagonal is positive (or 1 where the edge
+                        // is left as it is).
+                        self.solves.guarded_pivots += 1;
+                        self.inverse_pivot[i] = 1.0 / self.diagonal[i];
+                        self.upper[i] = 0.0;
+                    }
                 }
             }
         }
@@ -192,11 +223,14 @@ impl Yarns {
         self.precondition();
         self.p.copy_from_slice(&self.z);
         let mut rz = dot(&self.r, &self.z);
+        let first = rz;
         let enough = rz * TOLERANCE * TOLERANCE;
+        let mut iterations = 0;
         for _ in 0..MOST_ITERATIONS {
             if !(rz > enough && rz.is_finite()) {
                 break;
             }
+            iterations += 1;
             self.multiply(inertia);
             let pq = dot(&self.p, &self.q);
             if !(pq > 0.0 && pq.is_finite()) {
@@ -215,6 +249,17 @@ impl Yarns {
                 self.p[e] = self.z[e] + beta * self.p[e];
             }
         }
+        let solves = &mut self.solves;
+        solves.solves += 1;
+        solves.iterations += iterations;
+        if iterations == MOST_ITERATIONS as u64 && rz > enough {
+            solves.unconverged += 1;
+        }
+        solves.last_residual = if first > 0.0 && rz.is_finite() {
+            (rz / first).sqrt() as f32
+        } else {
+            0.0
+        };
     }
 
     /// z = P⁻¹ r, P the lines' blocks: each family's lines (the rows, the columns) swept side by
