@@ -303,8 +303,8 @@ pub mod prelude {
     };
     pub use crate::lod::{LodFocus, LodTiers, LodView};
     pub use crate::wind::{
-        SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindPlugin, WindSettings,
-        WindShelter, WindSource,
+        SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindMover, WindPlugin,
+        WindSettings, WindShelter, WindSource,
     };
     pub use crate::{WindfallPlugins, WindfallSchedule, WindfallSystems};
 }

@@ -1,5 +1,6 @@
 //! A fingerprint of falls: 1 000 falling objects of every preset and a cloud of 2 000 leaves,
-//! 600 fixed steps in a gusty wind with a fan, hashed (every fall's position, drift, motion and
+//! 600 fixed steps in a gusty wind with a fan and a cart (a `WindMover`) driving through them,
+//! then a physical flag (a `ParticleCloth`) flown for 5 s in that wind, hashed (every fall's position, drift, motion and
 //! whether it landed, bit for bit). The crate's arithmetic is portable and its lanes and threads
 //! change no bit, so the same hash comes out natively and in the browser, with the lanes or
 //! without, on any number of threads: the showcase's tour prints it (CI compares the browser's
@@ -74,6 +75,15 @@ pub fn fingerprint(threads: Option<usize>) -> u64 {
         WindSource::fan(12.0, 0.7, 14.0),
         Transform::from_xyz(-25.0, 4.0, 0.0).looking_at(Vec3::new(0.0, 6.0, 0.0), Vec3::Y),
     ));
+    app.world_mut().spawn((
+        Cart,
+        WindMover {
+            radius: 0.6,
+            ..default()
+        },
+        Transform::from_xyz(-30.0, 0.7, 0.5),
+    ));
+    app.add_systems(FixedUpdate, drive.before(WindfallSystems::Wind));
     for _ in 0..=STEPS {
         app.update();
     }
@@ -105,7 +115,48 @@ pub fn fingerprint(threads: Option<usize>) -> u64 {
             hash.vector(path.drift());
         }
     }
+    for p in physical_flag(world.resource::<WindField>()) {
+        hash.vector(p);
+    }
     hash.0
+}
+
+/// A physical flag (a `ParticleCloth` of 12 × 18 nodes, 1.2 × 0.8 m of 0.15 kg/m², on a pole
+/// 6 m up) flown for 5 s at 60 steps a second in the fingerprint's wind, from the field's clock
+/// on: its nodes' positions.
+fn physical_flag(wind: &WindField) -> Vec<Vec3> {
+    use bevy_windfall::aero::{AeroCoefficients, ParticleCloth, Pinning};
+    let grid = ClothGrid {
+        rows: 12,
+        columns: 18,
+        width: 1.2,
+        height: 0.8,
+    };
+    let mut flag = ParticleCloth::new(grid, 0.15, AeroCoefficients::default(), Pinning::PoleColumn)
+        .expect("a valid flag");
+    let (pole, start, dt) = (Vec3::new(-5.0, 6.0, 5.0), wind.time(), 1.0 / 60.0);
+    for i in 0..300 {
+        let t = start + i as f32 * dt;
+        flag.step(dt, Vec3::new(0.0, -9.81, 0.0), &|p| {
+            wind.velocity_at(pole + p, t)
+        });
+    }
+    flag.positions().to_vec()
+}
+
+/// The fingerprint's cart.
+#[derive(Component)]
+struct Cart;
+
+/// Drives the cart along +X at 7 m/s through the falls, back to the start (a teleport) at the
+/// far side.
+fn drive(time: Res<Time>, mut carts: Query<&mut Transform, With<Cart>>) {
+    for mut t in &mut carts {
+        t.translation.x += 7.0 * time.delta_secs();
+        if t.translation.x > 30.0 {
+            t.translation.x = -30.0;
+        }
+    }
 }
 
 /// FNV-1a, 64 bits: a hash the same on every platform (`std`'s are not promised to be).

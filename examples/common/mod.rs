@@ -18,4 +18,4 @@ pub use harness::{
     CheckLayout, DEFAULT_SCREENSHOT_FRAME, LayoutFailures, RECORDED_FRAME, Readiness,
     ScreenshotDone, ScreenshotPlugin, example_app, exit_code, take_screenshot,
 };
-pub use scenery::{grass, meadow, two_sided};
+pub use scenery::{blades, grass, meadow, two_sided};

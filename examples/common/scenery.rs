@@ -1,6 +1,8 @@
-//! The showcase's scenery: a sunlit meadow, its ground in patches of green, and a matte
-//! two-sided material.
+//! The showcase's scenery: a sunlit meadow, its ground in patches of green, blades of grass for
+//! the GPU to bend, and a matte two-sided material.
 
+use bevy::asset::RenderAssetUsages;
+use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
 
 /// A sunlit meadow: a directional light from `sun` toward the origin, ambient light and a grass
@@ -81,4 +83,49 @@ pub fn two_sided(
         perceptual_roughness: 0.8,
         ..default()
     })
+}
+
+/// `count` blades over the rectangle `min`..`max` (x, z) at y = 0: each a tapered strip of
+/// three triangles, 2–3 cm wide, 0.35–1 × `tallest` m tall, turned at random, darker at the root. The
+/// mesh's y is the height above the ground, as `SwaySettings::grass` expects.
+pub fn blades(count: u32, tallest: f32, min: Vec2, max: Vec2) -> Mesh {
+    let (mut positions, mut normals, mut colors, mut indices) = (vec![], vec![], vec![], vec![]);
+    for blade in 0..count {
+        // Four numbers in [0, 1) per blade from a low-discrepancy sequence.
+        let r = [0.754_877_7, 0.569_840_3, 0.438_993_9, 0.324_717_9]
+            .map(|a| (blade as f32 * a).fract());
+        let root = min + (max - min) * Vec2::new(r[0], r[1]);
+        let yaw = std::f32::consts::TAU * r[2];
+        let (side, face) = (
+            Vec3::new(yaw.cos(), 0.0, yaw.sin()),
+            Vec3::new(-yaw.sin(), 0.0, yaw.cos()),
+        );
+        let height = tallest * (0.35 + 0.65 * r[3]);
+        let width = 0.02 + 0.01 * r[2];
+        let base = positions.len() as u32;
+        // Root pair, middle pair, tip.
+        for (h, w) in [
+            (0.0, 0.5),
+            (0.0, -0.5),
+            (0.55, 0.35),
+            (0.55, -0.35),
+            (1.0, 0.0),
+        ] {
+            let p = Vec3::new(root.x, 0.0, root.y) + side * (w * width) + Vec3::Y * (h * height);
+            positions.push(p.to_array());
+            normals.push((Vec3::Y + 0.4 * face).normalize().to_array());
+            let c = Vec3::new(0.16, 0.34, 0.08).lerp(Vec3::new(0.45, 0.56, 0.18), h);
+            colors.push([c.x, c.y, c.z, 1.0]);
+        }
+        indices.extend_from_slice(&[base, base + 1, base + 2, base + 1, base + 3, base + 2]);
+        indices.extend_from_slice(&[base + 2, base + 3, base + 4]);
+    }
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::RENDER_WORLD,
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_COLOR, colors)
+    .with_inserted_indices(Indices::U32(indices))
 }

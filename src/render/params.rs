@@ -23,20 +23,20 @@ pub(crate) const MAX_GPU_LOCALS: usize = 64;
 pub(crate) struct GpuLocal {
     /// World position of the entity.
     pub origin: Vec3,
-    /// What it is: 1 sphere, 2 fan, 3 vortex, 4 blast, 5 gust; 10 room, 11 wall.
+    /// What it is: 1 sphere, 2 fan, 3 vortex, 4 blast, 5 gust, 6 mover; 10 room, 11 wall.
     pub kind: u32,
     /// World-to-local rotation (x, y, z, w).
     pub to_local: Vec4,
     /// Local-to-world rotation (x, y, z, w).
     pub to_world: Vec4,
-    /// A sphere's velocity, or a shelter's half extents.
+    /// A sphere's or a mover's velocity, or a shelter's half extents.
     pub vector: Vec3,
     /// Nothing beyond this distance², m².
     pub reach_squared: f32,
     /// The shape's numbers, in the order of [`SourceShape`]'s fields after the first vector
     /// (fan: range, half angle, speed; vortex: radius, peak speed, updraft; blast: peak speed,
-    /// front speed, radius; gust: strength, front speed, width, range; sphere: radius; wall: lee
-    /// heights, depth).
+    /// front speed, radius; gust: strength, front speed, width, range; sphere: radius; mover:
+    /// radius, ground, mirror share; wall: lee heights, depth).
     pub shape: Vec4,
     /// The source's strength.
     pub strength: f32,
@@ -80,7 +80,7 @@ pub(crate) struct GpuWindParams {
     pub pulse: Vec3,
     /// How many of [`Self::locals`] are shelters (they come first).
     pub shelter_count: u32,
-    /// How many of [`Self::locals`] are sources (after the shelters).
+    /// How many of [`Self::locals`] are sources and movers (after the shelters).
     pub source_count: u32,
     /// Shelters and sources beyond [`MAX_GPU_LOCALS`], left out.
     pub dropped: u32,
@@ -244,6 +244,20 @@ impl GpuWindParams {
             };
             count += 1;
         }
+        // The movers after the sources, in the order the CPU sums them.
+        let movers = field.placed_movers();
+        for m in movers.iter().take(MAX_GPU_LOCALS - count) {
+            locals[count] = GpuLocal {
+                origin: m.centre,
+                kind: 6,
+                vector: m.velocity,
+                reach_squared: m.reach2,
+                shape: Vec4::new(m.radius, m.ground, m.mirror, 0.0),
+                strength: 1.0,
+                ..GpuLocal::default()
+            };
+            count += 1;
+        }
         Self {
             dims: UVec4::new(nt as u32, nx as u32, ny as u32, nz as u32),
             along: Vec2::new(along.x, along.z),
@@ -261,7 +275,7 @@ impl GpuWindParams {
             pulse: pulse(c.pulse, t0),
             shelter_count: shelter_count as u32,
             source_count: (count - shelter_count) as u32,
-            dropped: (shelters.len() + sources.len() - count) as u32,
+            dropped: (shelters.len() + sources.len() + movers.len() - count) as u32,
             locals,
         }
     }

@@ -20,6 +20,7 @@ mod field;
 #[cfg(feature = "gizmos")]
 mod gizmos;
 mod local;
+mod mover;
 mod placement;
 mod plugin;
 
@@ -39,6 +40,8 @@ pub use field::WindField;
 pub use gizmos::WindGizmos;
 #[cfg(feature = "gizmos")]
 pub(crate) use gizmos::WindGizmosPlugin;
+pub(crate) use mover::MoverFlow;
+pub use mover::{WindMover, WindMoverInvalid};
 pub use plugin::WindPlugin;
 pub use pulse::Pulse;
 pub use rebuild::{WindRebuild, WindRebuilt};

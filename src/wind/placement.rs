@@ -30,7 +30,7 @@ pub(super) fn anything_to_place(
 }
 
 /// The transforms of the entities that hold sources and shelters, and of their ancestors.
-type Hierarchy<'w, 's> = Query<'w, 's, (&'static Transform, Option<&'static ChildOf>)>;
+pub(super) type Hierarchy<'w, 's> = Query<'w, 's, (&'static Transform, Option<&'static ChildOf>)>;
 
 /// Most ancestors followed up from a source or shelter (a deeper chain places nothing).
 const MAX_DEPTH: usize = 256;
@@ -41,7 +41,7 @@ const MAX_DEPTH: usize = 256;
 /// rotations composed, whatever their scales (a zero, negative or huge scale neither removes nor
 /// turns a source: sizes are in metres). A transform that places it nowhere is an error naming
 /// `transform`.
-fn world_place(entity: Entity, hierarchy: &Hierarchy) -> Result<Placement, WindError> {
+pub(super) fn world_place(entity: Entity, hierarchy: &Hierarchy) -> Result<Placement, WindError> {
     let nowhere = |value| {
         WindError::Invalid(InvalidValue {
             field: "transform",
@@ -71,7 +71,7 @@ fn world_place(entity: Entity, hierarchy: &Hierarchy) -> Result<Placement, WindE
 }
 
 /// The items in entity order, so sums over them are the same on every run.
-fn in_entity_order<T>(mut items: Vec<(Entity, T)>) -> Vec<T> {
+pub(super) fn in_entity_order<T>(mut items: Vec<(Entity, T)>) -> Vec<T> {
     items.sort_by_key(|(entity, _)| *entity);
     items.into_iter().map(|(_, t)| t).collect()
 }

@@ -8,6 +8,7 @@ use bevy::time::Time;
 
 use super::config::WindConfig;
 use super::field::WindField;
+use super::mover::{WindMover, WindMoverInvalid, anything_moving, place_wind_movers};
 use super::placement::{anything_to_place, check_shelter, place_wind_sources, restart_source};
 use super::rebuild::{WindRebuild, WindRebuilt, land_wind_rebuild};
 use super::settings::{WindSettings, field_inserted, take_in_wind_settings};
@@ -77,6 +78,8 @@ impl Plugin for WindPlugin {
             .register_type::<WindShelter>()
             .register_type::<WindShelterInvalid>()
             .register_type::<ShelterKind>()
+            .register_type::<WindMover>()
+            .register_type::<WindMoverInvalid>()
             .add_observer(field_inserted)
             .add_observer(restart_source)
             .add_observer(check_shelter)
@@ -95,6 +98,7 @@ impl Plugin for WindPlugin {
                     // Only with a source or shelter to place, or placed ones to clear (a system
                     // with nothing to do still costs a wake-up).
                     place_wind_sources.run_if(anything_to_place),
+                    place_wind_movers.run_if(anything_moving),
                 )
                     .chain()
                     .in_set(WindfallSystems::Wind),

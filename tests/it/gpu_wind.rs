@@ -295,14 +295,32 @@ fn run(case: &Case) -> (f32, f32) {
         WindShelter::indoor(Vec3::new(4.0, 3.0, 4.0)),
         Transform::from_xyz(18.0, 3.0, -18.0),
     ));
+    // A body moving low over the ground: 5 cm a step along a slant, and standing still from the
+    // third step on its velocity is the mean of the last two steps (half its stride a step).
+    let mover = world
+        .spawn((
+            WindMover {
+                radius: 3.0,
+                ..default()
+            },
+            Transform::from_xyz(6.0, 3.5, 4.0),
+        ))
+        .id();
     // The sources are placed in the next fixed step; then the clock stops, so every frame's
     // upload is the same state.
     app.update();
+    app.world_mut()
+        .get_mut::<Transform>(mover)
+        .unwrap()
+        .translation += Vec3::new(0.05, 0.01, -0.03);
     app.update();
     app.world_mut().resource_mut::<WindField>().paused = true;
     app.update();
+    // No more fixed steps: the mover's flow (and every placement) stays as the CPU's copy has it.
+    app.world_mut().resource_mut::<Time<Virtual>>().pause();
     let field = app.world().resource::<WindField>().clone();
     assert_eq!(field.source_count(), 5, "{}: blast or gust over", case.name);
+    assert_eq!(field.mover_count(), 1, "{}: the mover moved", case.name);
     assert_eq!(field.shelter_count(), 2);
     let t0 = field.time_f64();
 

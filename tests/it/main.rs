@@ -36,6 +36,7 @@ mod screenshots;
 mod spectrum;
 mod stability;
 mod wind;
+mod wind_movers;
 mod wind_plugin;
 #[cfg(feature = "serde")]
 mod wind_serde;

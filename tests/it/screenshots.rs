@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 /// README's quick start in a fresh project, `.ci/newcomer.py`). The showcase's leaves scene must
 /// also show its storm, its flag its red and its gallery the motions' trails (see
 /// [`showcase_reason`]); the examples what they are about (see [`content_reason`]).
-const EXPECTED: [&str; 16] = [
+const EXPECTED: [&str; 17] = [
     "showcase_leaves.png",
     "showcase_coin.png",
     "showcase_flag.png",
@@ -29,6 +29,7 @@ const EXPECTED: [&str; 16] = [
     "example_avian_body.png",
     "example_physical_flag.png",
     "example_inspector.png",
+    "example_interaction.png",
     "newcomer.png",
 ];
 
@@ -71,10 +72,10 @@ fn content_reason(name: &str, frame: &Frame) -> Option<String> {
     let specks = leaf_specks(frame);
     let wants = |topics: &[&str]| topics.iter().any(|t| name.contains(t));
     let mut missing = Vec::new();
-    if wants(&["_flag", "curtain", "inspector", "newcomer"]) {
+    if wants(&["_flag", "curtain", "inspector", "interaction", "newcomer"]) {
         missing.extend(red_flag_reason(frame));
     }
-    if wants(&["physical_flag", "newcomer"]) && blue < 0.002 {
+    if wants(&["physical_flag", "interaction", "newcomer"]) && blue < 0.002 {
         missing.push(format!(
             "no blue physical cloth: {:.2} % blue",
             blue * 100.0
@@ -85,6 +86,7 @@ fn content_reason(name: &str, frame: &Frame) -> Option<String> {
         "leaf_cloud",
         "wind_settings",
         "wind_sources",
+        "interaction",
         "newcomer",
     ]) && specks < 0.3
     {
@@ -92,7 +94,7 @@ fn content_reason(name: &str, frame: &Frame) -> Option<String> {
             "no leaves: {specks:.2} autumn specks per 1000 pixels (≥ 0.3)"
         ));
     }
-    if wants(&["grass"]) {
+    if wants(&["grass", "interaction"]) {
         missing.extend(grass_reason(frame));
     }
     (!missing.is_empty()).then(|| missing.join("; "))

@@ -3,11 +3,11 @@
 
 use bevy::math::Vec3;
 
-use super::block::{Block, Constants};
+use super::block::{Block, Constants, W};
 use crate::freefall::model::release::FallRelease;
 use crate::math::geometry::V3;
 use crate::math::lane::Lane;
-use crate::wind::{Moment, WindField};
+use crate::wind::{Moment, MoverFlow, WindField};
 
 /// The air the falls move in.
 #[derive(Clone, Copy, Debug)]
@@ -24,6 +24,9 @@ pub(crate) enum Air<'a> {
 pub(super) enum Reading<'a> {
     Still,
     Field(&'a WindField, Moment),
+    /// The field for falls that all lie in a box: only the movers whose flow reaches it (the
+    /// same bits: the others add exact zeros there).
+    Near(&'a WindField, Moment, Vec<MoverFlow>),
     /// Already held to [`FallRelease::MAX_SPEED`].
     Uniform(Vec3),
 }
@@ -40,6 +43,31 @@ impl<'a> Reading<'a> {
         }
     }
 
+    /// This step's air for the first `live` falls of `blocks`: the movers whose flow cannot
+    /// reach any of them left out (`None` where nothing would be).
+    pub(super) fn around<K: Constants>(
+        &self,
+        blocks: &[Block<K>],
+        live: usize,
+    ) -> Option<Reading<'a>> {
+        let Reading::Field(field, moment) = self else {
+            return None;
+        };
+        if field.placed_movers().is_empty() {
+            return None;
+        }
+        let (mut low, mut high) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for (b, block) in blocks.iter().enumerate() {
+            let h = &block.hot;
+            for j in 0..live.saturating_sub(b * W).min(W) {
+                let p = Vec3::new(h.p2x[j], h.p2y[j], h.p2z[j]);
+                (low, high) = (low.min(p), high.max(p));
+            }
+        }
+        (low.is_finite() && high.is_finite())
+            .then(|| Reading::Near(field, *moment, field.movers_near(low, high)))
+    }
+
     /// The air's velocity at lanes `k..` of `block` (where each fall is), held to
     /// [`FallRelease::MAX_SPEED`].
     pub(super) fn lanes<L: Lane, K: Constants>(&self, block: &Block<K>, k: usize) -> V3<L> {
@@ -50,6 +78,11 @@ impl<'a> Reading<'a> {
             Reading::Field(field, moment) => {
                 let p = V3::new(L::load(&h.p2x, k), L::load(&h.p2y, k), L::load(&h.p2z, k));
                 clamp_speed(field.velocity_lanes(moment, p), FallRelease::MAX_SPEED)
+            }
+            Reading::Near(field, moment, movers) => {
+                let p = V3::new(L::load(&h.p2x, k), L::load(&h.p2y, k), L::load(&h.p2z, k));
+                let v = field.velocity_lanes_among(moment, p, movers);
+                clamp_speed(v, FallRelease::MAX_SPEED)
             }
         }
     }

@@ -146,6 +146,9 @@ fn step_blocks<K: Constants>(
     clock: &FallClock,
 ) -> ChunkReport {
     let mut report = ChunkReport::default();
+    // Only the movers that reach this chunk's falls.
+    let near = air.around(blocks, cold.len());
+    let air = near.as_ref().unwrap_or(air);
     for (b, block) in blocks.iter_mut().enumerate() {
         let first = b * W;
         if first >= cold.len() {

@@ -10,6 +10,7 @@ use super::config::{SpatialMode, TemporalMode, WindConfig};
 use super::ease::WindEasing;
 use super::error::WindError;
 
+use super::mover::MoverFlow;
 use super::shelter::PlacedShelter;
 use super::source::PlacedSource;
 use crate::spectrum::{GridShape, SpectrumError, Synthesizer};
@@ -76,6 +77,9 @@ pub struct WindField {
     generation: u64,
     /// The [`WindSource`](super::WindSource)s placed at the last fixed step, by entity.
     sources: Vec<PlacedSource>,
+    /// The flows of the [`WindMover`](super::WindMover)s that moved at the last fixed step, by
+    /// entity.
+    movers: Vec<MoverFlow>,
     /// Where [`WindField::ease_to`] is taking the mean wind.
     ease: Option<WindEasing>,
     /// The [`WindShelter`](super::WindShelter)s placed at the last fixed step.
@@ -154,6 +158,7 @@ impl WindField {
             paused: false,
             generation: GENERATIONS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
             sources: Vec::new(),
+            movers: Vec::new(),
             ease: None,
             shelters: Vec::new(),
             step_start: 0.0,
@@ -224,6 +229,12 @@ impl WindField {
         self.sources = sources;
     }
 
+    /// Replaces the movers' flows (the [`WindPlugin`](super::WindPlugin) does this every fixed
+    /// step from the [`WindMover`](super::WindMover) components).
+    pub(crate) fn set_movers(&mut self, movers: Vec<MoverFlow>) {
+        self.movers = movers;
+    }
+
     /// Replaces the shelters (the [`WindPlugin`](super::WindPlugin) does this every fixed step
     /// from the [`WindShelter`](super::WindShelter) components).
     pub(crate) fn set_shelters(&mut self, shelters: Vec<PlacedShelter>) {
@@ -260,6 +271,11 @@ impl WindField {
         &self.sources
     }
 
+    /// The movers' flows placed at the last fixed step, in the order they are summed.
+    pub(crate) fn placed_movers(&self) -> &[MoverFlow] {
+        &self.movers
+    }
+
     /// The shelters placed at the last fixed step.
     #[cfg(feature = "render")]
     pub(crate) fn placed_shelters(&self) -> &[PlacedShelter] {
@@ -275,6 +291,12 @@ impl WindField {
     /// step).
     pub fn source_count(&self) -> usize {
         self.sources.len()
+    }
+
+    /// How many [`WindMover`](super::WindMover)s push the air (those that moved at the last
+    /// fixed step).
+    pub fn mover_count(&self) -> usize {
+        self.movers.len()
     }
 }
 

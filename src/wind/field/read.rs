@@ -11,6 +11,7 @@ use crate::math::kernels::{clamp, floor};
 use crate::math::lane::Lane;
 use crate::spectrum::periodic_lerp;
 use crate::wind::config::{SpatialMode, TemporalMode};
+use crate::wind::mover::MoverFlow;
 
 impl WindField {
     /// The global field's velocity at `position` and `time` (sheltered), without the local
@@ -83,25 +84,69 @@ impl WindField {
     /// The wind at `L::WIDTH` points given in lanes at `moment` (from [`Self::moment`]): what
     /// a fall store reads for a block.
     pub(crate) fn velocity_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>) -> V3<L> {
-        self.read_lanes(moment, points)
+        self.read_lanes(moment, points, &self.movers)
+    }
+
+    /// [`Self::velocity_lanes`] for points that all lie within the box of [`Self::movers_near`]
+    /// `movers` came from: the same bits, the far movers skipped.
+    pub(crate) fn velocity_lanes_among<L: Lane>(
+        &self,
+        moment: &Moment,
+        points: V3<L>,
+        movers: &[MoverFlow],
+    ) -> V3<L> {
+        self.read_lanes(moment, points, movers)
+    }
+
+    /// The movers whose flow reaches into the box from `low` to `high` (in the order they are
+    /// summed): reading points inside the box among them alone gives the same bits as among
+    /// all (the others add exact zeros there).
+    pub(crate) fn movers_near(&self, low: Vec3, high: Vec3) -> Vec<MoverFlow> {
+        self.movers
+            .iter()
+            .filter(|m| {
+                let nearest = m.centre.clamp(low, high);
+                m.centre.distance_squared(nearest) < m.reach2
+            })
+            .copied()
+            .collect()
     }
 
     fn read_many(&self, positions: &[Vec3], time: f64, out: &mut Vec<Vec3>) {
         let moment = self.moment(time);
         out.clear();
         out.reserve(positions.len());
-        let mut quads = positions.chunks_exact(4);
-        for quad in &mut quads {
-            let lane = |axis: usize| f32x4::from(std::array::from_fn(|k| quad[k][axis]));
-            let v = self.read_lanes(&moment, V3::new(lane(0), lane(1), lane(2)));
-            out.extend((0..4).map(|k| Vec3::new(v.x.get(k), v.y.get(k), v.z.get(k))));
+        // A few hundred points at a time, each batch among the movers that reach its box.
+        for batch in positions.chunks(256) {
+            let near;
+            let movers = if self.movers.is_empty() {
+                &self.movers[..]
+            } else {
+                let (low, high) = batch.iter().fold(
+                    (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+                    |(low, high), p| (low.min(*p), high.max(*p)),
+                );
+                // A NaN point: every mover (its reads are the field's guarded ones anyway).
+                near = if low.is_finite() && high.is_finite() {
+                    self.movers_near(low, high)
+                } else {
+                    self.movers.clone()
+                };
+                &near[..]
+            };
+            let mut quads = batch.chunks_exact(4);
+            for quad in &mut quads {
+                let lane = |axis: usize| f32x4::from(std::array::from_fn(|k| quad[k][axis]));
+                let v = self.read_lanes(&moment, V3::new(lane(0), lane(1), lane(2)), movers);
+                out.extend((0..4).map(|k| Vec3::new(v.x.get(k), v.y.get(k), v.z.get(k))));
+            }
+            out.extend(
+                quads
+                    .remainder()
+                    .iter()
+                    .map(|&p| self.read_lanes(&moment, V3::of(p), movers).vec3()),
+            );
         }
-        out.extend(
-            quads
-                .remainder()
-                .iter()
-                .map(|&p| self.read_lanes(&moment, V3::of(p)).vec3()),
-        );
     }
 
     /// The global field, calmed by every shelter.
@@ -125,15 +170,16 @@ impl WindField {
 
     /// The global field (sheltered) plus every local source.
     fn sample(&self, position: Vec3, time: f64) -> Vec3 {
-        self.read_lanes(&self.moment(time), V3::of(position)).vec3()
+        self.read_lanes(&self.moment(time), V3::of(position), &self.movers)
+            .vec3()
     }
 
-    /// The global field (sheltered) plus every local source at `L::WIDTH` points: the lanes
-    /// take the log law, the interpolation and the mean wind; shelters and sources are added
-    /// point by point.
-    fn read_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>) -> V3<L> {
+    /// The global field (sheltered) plus every local source and the flows of `movers` at
+    /// `L::WIDTH` points: the lanes take the log law, the interpolation and the mean wind;
+    /// shelters, sources and movers are added point by point (sources, then movers, in one sum).
+    fn read_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>, movers: &[MoverFlow]) -> V3<L> {
         let global = self.global_lanes::<L>(moment, points);
-        if self.shelters.is_empty() && self.sources.is_empty() {
+        if self.shelters.is_empty() && self.sources.is_empty() && movers.is_empty() {
             return global;
         }
         let local_time = moment.time;
@@ -141,7 +187,7 @@ impl WindField {
             let g = Vec3::new(global.x.get(k), global.y.get(k), global.z.get(k));
             let point = Vec3::new(points.x.get(k), points.y.get(k), points.z.get(k));
             let g = self.shelter(point, g);
-            if self.sources.is_empty() {
+            if self.sources.is_empty() && movers.is_empty() {
                 return g;
             }
             let p = point.into();
@@ -149,6 +195,7 @@ impl WindField {
                 .sources
                 .iter()
                 .fold(Vec3::ZERO, |sum, s| sum + s.velocity(p, local_time));
+            let local = movers.iter().fold(local, |sum, m| sum + m.velocity(point));
             let total = g + local;
             if total.is_finite() { total } else { g }
         };
