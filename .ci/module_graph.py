@@ -2,7 +2,9 @@
 """Checks the crate's module graph from its source: no file imports the crate root (lib.rs),
 no module imports one of a higher layer (docs/architecture.md), no two files import each other
 (no cycle), no file inside a domain imports through its domain's facade (`mod.rs` that only
-re-exports), and no file under src/ is longer than 450 lines. Exits 1 and lists what it found.
+re-exports). Exits 1 and lists what it found. Files are cut by concept, not by length (a type and
+its inherent impls in one file, or in a folder named for it: docs/architecture.md); the longest
+are printed.
 
 Imports are read from `crate::…` and `super::…` paths outside comments and strings; a path is
 attributed to the longest module (file) prefix it names.
@@ -18,7 +20,6 @@ LAYERS = {
     "freefall": 4, "cloth": 4, "aero": 5, "render": 6, "inspector": 7, "plugins": 8,
 }
 FACADES = {("aero",), ("cloth",), ("freefall",), ("wind",), ("spectrum",)}
-MAX_LINES = 450
 
 
 def module_of(path):
@@ -48,12 +49,11 @@ def main():
         return ()
 
     problems = []
+    sizes = []
     edges = {}
     for module, path in modules.items():
         text = open(path).read()
-        lines = text.count("\n")
-        if lines > MAX_LINES:
-            problems.append(f"{os.path.relpath(path, ROOT)}: {lines} lines (at most {MAX_LINES})")
+        sizes.append((text.count("\n"), os.path.relpath(path, ROOT)))
         code = code_of(text)
         deps = set()
         for m in re.finditer(r"(?<!::)(?<!\bin )\b(crate|super)((?:::super)*)((?:::\w+)+|::\{)", code):
@@ -120,7 +120,8 @@ def main():
         print("  " + p)
     if problems:
         sys.exit(1)
-    print("  no import up to lib.rs or a higher layer, no cycle, no file over 450 lines")
+    print("  no import up to lib.rs or a higher layer, no cycle")
+    print("  longest files: " + ", ".join(f"{p} ({n})" for n, p in sorted(sizes, reverse=True)[:5]))
 
 
 if __name__ == "__main__":

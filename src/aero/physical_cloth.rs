@@ -2,6 +2,7 @@
 //! state and marker, its lifecycle, and the systems that step it and write its mesh.
 
 use bevy::asset::Assets;
+use bevy::diagnostic::FrameCount;
 use bevy::ecs::prelude::*;
 use bevy::math::Vec3;
 use bevy::mesh::{Mesh, Mesh3d};
@@ -174,8 +175,10 @@ pub(super) fn step_cloths(
     )>,
     wind: Option<Res<WindField>>,
     time: Res<Time>,
+    frame: Option<Res<FrameCount>>,
+    mut budget: Local<FrameBudget>,
 ) {
-    let dt = time.delta_secs();
+    let dt = budget.take(frame.map(|f| f.0), time.delta_secs());
     let wind = wind.as_deref();
     for (entity, mut state, mut previous, transform, invalid) in &mut cloths {
         previous.0.clear();
@@ -202,7 +205,35 @@ pub(super) fn step_cloths(
             Some(w) => inverse.transform_vector3(w.velocity(affine.transform_point3(p))),
             None => Vec3::ZERO,
         };
-        state.0.step(dt, gravity, &local_wind);
+        if dt > 0.0 {
+            state.0.step(dt, gravity, &local_wind);
+        }
+    }
+}
+
+/// What one rendered frame may simulate of the cloths: [`ParticleCloth::MAX_STEP`] over all
+/// its fixed steps. After a hitch Bevy runs many fixed steps in one frame (up to its
+/// `Time<Virtual>` maximum of 0.25 s: 125 ticks of 2 ms); the cloths take the first
+/// 50 ms of them and hold still through the rest (the time is dropped, not owed), so a hitch
+/// costs at most three frames' worth of cloth.
+#[derive(Default)]
+pub(super) struct FrameBudget {
+    frame: Option<u32>,
+    spent: f32,
+}
+
+impl FrameBudget {
+    /// The part of a fixed step of `dt` seconds in frame `frame` that the budget allows.
+    fn take(&mut self, frame: Option<u32>, dt: f32) -> f32 {
+        if frame.is_none() || frame != self.frame {
+            *self = Self { frame, spent: 0.0 };
+        }
+        if !(dt.is_finite() && dt > 0.0) {
+            return dt;
+        }
+        let allowed = dt.min((ParticleCloth::MAX_STEP - self.spent).max(0.0));
+        self.spent += allowed;
+        allowed
     }
 }
 

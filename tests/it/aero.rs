@@ -414,17 +414,18 @@ fn physical_flag_hangs_in_still_air_and_streams_in_wind() {
     );
     let mut streaming = flag(0.2);
     let breeze = |_: Vec3| Vec3::new(8.0, 0.0, 0.0);
-    // It flaps: the free corner's mean over the fourth second is well downwind and up (a second
-    // of a chaotic flapping: its height moves by about ±0.05 m with any change of the model;
-    // −0.497 m with a shear stiffness of 1.5 N/m, docs/aero.md).
+    // It flies: over seconds 2–6 the free top corner is on average well downwind and at most
+    // 30° below the pole's top, the Beaufort 5 flag of `physical_flag.rs` (it hangs far lower in
+    // still air).
     let mut mean = Vec3::ZERO;
-    for step in 0..240 {
+    for step in 0..360 {
         streaming.step(1.0 / 60.0, G, &breeze);
-        if step >= 180 {
-            mean += streaming.positions()[17] / 60.0;
+        if step >= 120 {
+            mean += streaming.positions()[17] / 240.0;
         }
     }
-    assert!(mean.x > 1.1 && mean.y > -0.5, "{mean:?}");
+    let droop = (-mean.y).atan2(mean.x).to_degrees();
+    assert!(mean.x > 1.1 && droop <= 30.0, "{mean:?}: {droop:.1}°");
     assert!(
         streaming.max_strain() < 0.08,
         "strain {}",
@@ -448,8 +449,8 @@ fn yarn_solves_in_a_breeze() -> YarnSolves {
 #[test]
 fn physical_flag_reports_its_yarn_solves() {
     let solves = yarn_solves_in_a_breeze();
-    // At least one linearisation per millisecond substep.
-    assert!(solves.solves >= 2000, "{solves:?}");
+    // At least one linearisation per substep: 2 s of 2 ms ticks.
+    assert!(solves.solves >= 1000, "{solves:?}");
     assert!(solves.iterations >= solves.solves, "{solves:?}");
     assert!(solves.unconverged <= solves.solves, "{solves:?}");
     assert_eq!(solves.guarded_pivots, 0, "{solves:?}");
@@ -458,8 +459,8 @@ fn physical_flag_reports_its_yarn_solves() {
 
 /// Every yarn solve of a flag in a breeze reaches its tolerance within the iteration limit.
 #[test]
-#[ignore = "not met: 695 of 2000 solves stop at the 12-iteration limit (9.2 iterations a solve \
-            on average), measured with the counters of physical_flag_reports_its_yarn_solves"]
+#[ignore = "not met: 245 of 1000 solves stop at the 12-iteration limit (8.5 iterations a solve \
+            on average, 2 ms ticks), measured with the counters of physical_flag_reports_its_yarn_solves"]
 fn physical_flag_yarn_solves_reach_their_tolerance() {
     let solves = yarn_solves_in_a_breeze();
     assert_eq!(solves.unconverged, 0, "{solves:?}");

@@ -572,3 +572,39 @@ fn idle_plugins_wake_for_what_comes_later_and_clear_what_goes() {
             .is_none()
     );
 }
+
+/// A hitch: one rendered frame running 16 fixed steps (a quarter of a second at 64 Hz) moves a
+/// physical cloth by `ParticleCloth::MAX_STEP` (50 ms) only, the same cloth as three frames of
+/// one fixed step each (25 ticks of 2 ms either way), in a steady wind; the rest of the hitch is
+/// dropped.
+#[test]
+fn a_hitch_costs_a_physical_cloth_three_frames_of_work() {
+    let steady = WindConfig {
+        reference_speed: 6.0,
+        turbulence_intensity: Some(0.0),
+        ..default()
+    };
+    let run = |frames: u32, steps_per_frame: u32| {
+        let mut app = headless_app_with_meshes();
+        app.add_plugins(WindfallPlugins.set(WindPlugin::new(steady.clone())));
+        let cloth = app
+            .world_mut()
+            .spawn((physical_flag(), Transform::from_xyz(0.0, 3.0, 0.0)))
+            .id();
+        ready(&mut app);
+        app.insert_resource(TimeUpdateStrategy::FixedTimesteps(steps_per_frame));
+        for _ in 0..frames {
+            app.update();
+        }
+        let state = app.world().get::<PhysicalClothState>(cloth).unwrap();
+        state.0.positions().to_vec()
+    };
+    let hitch = run(1, 16);
+    let three = run(3, 1);
+    let one = run(1, 1);
+    assert_eq!(
+        hitch, three,
+        "a 16-step frame moves the cloth as three frames do"
+    );
+    assert_ne!(hitch, one);
+}

@@ -2,6 +2,7 @@
 //! units) pushed by the air's pressure along its normal: a physically simulated flag.
 
 use crate::error::InvalidValue;
+use crate::math::kernels::sin_cos;
 
 mod constraints;
 mod loads;
@@ -39,8 +40,14 @@ const SHEAR_STIFFNESS: f32 = 1.5;
 const BENDING_STIFFNESS: f32 = 2e-5;
 
 /// Relative stretch of a yarn edge above which a substep's yarns are linearised again, and
-/// past which the next millisecond is cut into twice the substeps.
+/// past which the next tick is cut into twice the substeps.
 const STRETCH_TOLERANCE: f32 = 0.02;
+
+/// The most a yarn edge may be stretched, relative: a substep that leaves one stretched further
+/// (or anything not finite), which only loads far beyond any weather do (winds of 1e3–1e30 m/s,
+/// gravity of 1e6 m/s² and more on the lightest nodes), is undone: the nodes stay where the
+/// substep found them and stop. A clamp, counted by [`ParticleCloth::undone_substeps`].
+const STRETCH_LIMIT: f32 = 0.5;
 
 /// Node masses a particle cloth accepts, kg: lighter nodes are driven by their drag past what
 /// an f32 substep resolves, heavier ones lose every force to rounding.
@@ -52,10 +59,11 @@ const MAX_NODE_MASS: f64 = 1e9;
 ///
 /// Each node has the mass m of its share of the cloth and, across the sheet, carries air: its
 /// inertia is M = m I + m_a n nᵀ (n its unit normal, from its neighbours; m_a a fraction of a
-/// flat plate's added mass for the node's area). Time advances a millisecond at a time
-/// ([`ParticleCloth::SUBSTEP`], Macklin et al., "Small steps in physics simulation", 2019),
-/// each millisecond one substep (or 2, 4 … [`ParticleCloth::MAX_SUBSTEPS`] while the yarns
-/// could not be held within 2 % of their lengths), each substep:
+/// flat plate's added mass for the node's area). Time advances in ticks of 2 ms
+/// ([`ParticleCloth::tick`], Macklin et al., "Small steps in physics simulation", 2019: 1 ms
+/// ticks give the same frequency, swing and drag within 4 % over 60 s, 4 ms ticks within 7 %),
+/// each tick one substep (or 2, 4 … [`ParticleCloth::MAX_SUBSTEPS`] while the yarns could not be
+/// held within 2 % of their lengths), each substep:
 /// 1. **Pressure along the normal, implicit.** p = ½ ρ |v_rel|² C_N(α) sgn(v_rel · n),
 ///    v_rel = v − u, α the incidence, C_N = C_D sin²α + C_L sin α cos²α (the face law's share
 ///    along the normal), written p = (l + k) w with w = v_rel · n and the rates
@@ -102,9 +110,13 @@ pub struct ParticleCloth {
     coefficients: AeroCoefficients,
     /// Constraint sweeps per substep, used within 1..=[`ParticleCloth::MAX_ITERATIONS`].
     pub iterations: usize,
-    /// Fewest substeps per [`ParticleCloth::SUBSTEP`], used within
-    /// 1..=[`ParticleCloth::MAX_SUBSTEPS`].
+    /// Fewest substeps per tick, used within 1..=[`ParticleCloth::MAX_SUBSTEPS`].
     pub min_substeps: u32,
+    /// How long one tick of the simulation is, s: each is one substep or more (while the yarns
+    /// could not be held). [`ParticleCloth::SUBSTEP`] (2 ms) by default, used within
+    /// [`ParticleCloth::SHORTEST_TICK`]..=[`ParticleCloth::LONGEST_TICK`]; a frame is simulated
+    /// in whole ticks.
+    pub tick: f32,
     /// Each node's unit normal (zero where the sheet is degenerate): the one its inertia and
     /// velocity are expressed with.
     normals: Vec<Vec3>,
@@ -126,9 +138,11 @@ pub struct ParticleCloth {
     bend_lambdas: Vec<Vec3>,
     /// The air's force on the cloth over the last step (mean), N.
     force: Vec3,
-    /// Time not simulated yet (less than a millisecond), s.
+    /// Time not simulated yet (less than a tick), s.
     owed: f32,
-    /// Substeps the next millisecond is cut into.
+    /// Substeps undone since the cloth was made (see [`STRETCH_LIMIT`]).
+    undone: u64,
+    /// Substeps the next tick is cut into.
     parts: u32,
     previous: Vec<Vec3>,
 }
@@ -176,13 +190,18 @@ impl ParticleCloth {
         )?;
         let node_mass = node_mass as f32;
         let (dx, dy) = (grid.segment(), grid.row_spacing());
-        // A millimetre ripple out of the plane, so that the sheet can fold rather than hang in its
-        // own plane like a board (a real flag is never exactly flat).
+        // A ripple out of the plane of a thousandth of the smaller side, so that the sheet can
+        // fold rather than hang in its own plane like a board (a real flag is never exactly
+        // flat): waves of a fixed share of the sheet (W / 1.9 along the yarns, H / 1.1 across),
+        // so every grid starts from the same shape; portable sines, the same bits everywhere.
+        let size = grid.width.min(grid.height);
         let positions: Vec<Vec3> = (0..rows)
             .flat_map(|k| {
                 (0..columns).map(move |j| {
-                    let ripple = 1e-3 * ((j as f32 * 0.9).sin() + (k as f32 * 1.3).cos());
-                    Vec3::new(j as f32 * dx, -(k as f32) * dy, ripple)
+                    let (x, y) = (j as f32 * dx, k as f32 * dy);
+                    let (sine, _) = sin_cos(std::f32::consts::TAU * 1.9 * x / grid.width);
+                    let (_, cosine) = sin_cos(std::f32::consts::TAU * 1.1 * y / grid.height);
+                    Vec3::new(x, -y, 1e-3 * size * (sine + cosine))
                 })
             })
             .collect();
@@ -284,6 +303,7 @@ impl ParticleCloth {
             coefficients,
             iterations: 1,
             min_substeps: 1,
+            tick: ParticleCloth::SUBSTEP,
             normals: Vec::with_capacity(n),
             fresh_normals: Vec::with_capacity(n),
             lift_rate: vec![0.0; n],
@@ -297,6 +317,7 @@ impl ParticleCloth {
             wind_age: u32::MAX,
             force: Vec3::ZERO,
             owed: 0.0,
+            undone: 0,
             parts: 1,
         };
         let mut normals = std::mem::take(&mut cloth.normals);
@@ -332,6 +353,13 @@ impl ParticleCloth {
         self.yarns.solves
     }
 
+    /// Substeps undone since the cloth was made: a substep that would leave a yarn edge
+    /// stretched by more than half its length, or a node not finite, is undone and the cloth
+    /// stopped where it was (only under loads far beyond weather: see the module's docs).
+    pub fn undone_substeps(&self) -> u64 {
+        self.undone
+    }
+
     /// Largest |length / rest − 1| over the edges along the rows and the columns.
     pub fn max_strain(&self) -> f32 {
         self.yarns.max_strain(&self.positions)
@@ -361,19 +389,27 @@ impl ParticleCloth {
     }
 
     /// Advances by `dt` under `gravity` in the fluid velocity `wind(p)` (local frame), in whole
-    /// milliseconds ([`ParticleCloth::SUBSTEP`]): what is left of `dt` (less than one) is
-    /// simulated with the next step, and a step longer than [`ParticleCloth::MAX_STEP`] is
+    /// ticks ([`ParticleCloth::tick`], 2 ms by default): what is left of `dt` (less than
+    /// one) is simulated with the next step, and a step longer than [`ParticleCloth::MAX_STEP`] is
     /// simulated as that long. The wind is sampled every [`ParticleCloth::WIND_INTERVAL`]
-    /// milliseconds. A non-finite or non-positive `dt` or a non-finite `gravity` leaves the cloth
+    /// milliseconds. A substep that would stretch a yarn by more than half is undone
+    /// ([`ParticleCloth::undone_substeps`]). A non-finite or non-positive `dt` or a non-finite `gravity` leaves the cloth
     /// as it is (the plugin reports such a cloth with
     /// [`PhysicalClothInvalid`](super::physical_cloth::PhysicalClothInvalid)).
     pub fn step(&mut self, dt: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
         if !(dt.is_finite() && dt > 0.0 && gravity.is_finite()) {
             return;
         }
-        let tick = ParticleCloth::SUBSTEP;
+        let tick = if self.tick.is_finite() {
+            self.tick
+                .clamp(ParticleCloth::SHORTEST_TICK, ParticleCloth::LONGEST_TICK)
+        } else {
+            ParticleCloth::SUBSTEP
+        };
+        // The wind is sampled every WIND_INTERVAL milliseconds, whatever the tick.
+        let interval = ((ParticleCloth::WIND_INTERVAL as f32 * 1e-3 / tick).round() as u32).max(1);
         let total = (dt + self.owed).min(ParticleCloth::MAX_STEP);
-        // Whole milliseconds; within a thousandth of one counts as whole (f32 frame times).
+        // Whole ticks; within a thousandth of one counts as whole (f32 frame times).
         let count = (total / tick + 1e-3).floor();
         self.owed = (total - count * tick).max(0.0);
         if count < 1.0 {
@@ -381,7 +417,7 @@ impl ParticleCloth {
         }
         self.force = Vec3::ZERO;
         for _ in 0..count as u32 {
-            if self.wind_age >= ParticleCloth::WIND_INTERVAL {
+            if self.wind_age >= interval {
                 for (u, p) in self.wind.iter_mut().zip(&self.positions) {
                     let w = wind(*p);
                     *u = if w.is_finite() { w } else { Vec3::ZERO };
@@ -397,7 +433,11 @@ impl ParticleCloth {
             let mut worst = 0.0f32;
             for _ in 0..parts {
                 self.loads();
-                worst = worst.max(self.substep(h, gravity));
+                let strain = self.substep(h, gravity);
+                if !(strain <= STRETCH_LIMIT && self.positions.iter().all(|p| p.is_finite())) {
+                    self.undo();
+                }
+                worst = worst.max(strain);
             }
             if worst > STRETCH_TOLERANCE || worst.is_nan() {
                 self.parts = (parts * 2).min(most);
@@ -412,20 +452,40 @@ impl ParticleCloth {
     }
 }
 
+impl ParticleCloth {
+    /// Puts the nodes back where the last substep found them, at rest (see [`STRETCH_LIMIT`]).
+    fn undo(&mut self) {
+        self.positions.copy_from_slice(&self.previous);
+        self.velocities.fill(Vec3::ZERO);
+        let mut normals = std::mem::take(&mut self.normals);
+        self.normals_into(&mut normals);
+        self.normals = normals;
+        self.undone += 1;
+    }
+}
+
 /// Limits and constants of [`ParticleCloth`].
 impl ParticleCloth {
     /// Most constraint sweeps per substep: [`ParticleCloth::iterations`] is clamped to it.
     pub const MAX_ITERATIONS: usize = 8;
 
-    /// Most substeps per [`ParticleCloth::SUBSTEP`]: [`ParticleCloth::min_substeps`] is clamped
-    /// to it.
+    /// Most substeps per tick: [`ParticleCloth::min_substeps`] is clamped to it.
     pub const MAX_SUBSTEPS: u32 = 16;
 
-    /// The longest substep, s, whatever the step: every millisecond is one substep or more.
-    pub const SUBSTEP: f32 = 1e-3;
+    /// The default tick ([`ParticleCloth::tick`]), s: the longest substep of a new cloth.
+    pub const SUBSTEP: f32 = 2e-3;
 
-    /// Longest step simulated, s: a longer one (a hitch) is simulated as this long.
-    pub const MAX_STEP: f32 = 0.25;
+    /// The shortest tick a cloth takes, s.
+    pub const SHORTEST_TICK: f32 = 2.5e-4;
+
+    /// The longest tick a cloth takes, s.
+    pub const LONGEST_TICK: f32 = 4e-3;
+
+    /// Longest step simulated, s: a longer one (a hitch) is simulated as this long, so a frame
+    /// costs at most 25 ticks (three 60 Hz frames' worth), however long it took. The
+    /// [`PhysicalCloth`](super::physical_cloth::PhysicalCloth) plugin holds each rendered frame to
+    /// the same budget over all its fixed steps.
+    pub const MAX_STEP: f32 = 0.05;
 
     /// Milliseconds between two samples of the wind.
     pub const WIND_INTERVAL: u32 = 4;
