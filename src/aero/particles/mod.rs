@@ -392,7 +392,7 @@ impl ParticleCloth {
     /// ticks ([`ParticleCloth::tick`], 2 ms by default): what is left of `dt` (less than
     /// one) is simulated with the next step, and a step longer than [`ParticleCloth::MAX_STEP`] is
     /// simulated as that long. The wind is sampled every [`ParticleCloth::WIND_INTERVAL`]
-    /// milliseconds. A substep that would stretch a yarn by more than half is undone
+    /// milliseconds (rounded to whole ticks). A substep that would stretch a yarn by more than half is undone
     /// ([`ParticleCloth::undone_substeps`]). A non-finite or non-positive `dt` or a non-finite `gravity` leaves the cloth
     /// as it is (the plugin reports such a cloth with
     /// [`PhysicalClothInvalid`](super::physical_cloth::PhysicalClothInvalid)).
@@ -406,7 +406,7 @@ impl ParticleCloth {
         } else {
             ParticleCloth::SUBSTEP
         };
-        // The wind is sampled every WIND_INTERVAL milliseconds, whatever the tick.
+        // The wind is sampled every WIND_INTERVAL milliseconds, rounded to whole ticks.
         let interval = ((ParticleCloth::WIND_INTERVAL as f32 * 1e-3 / tick).round() as u32).max(1);
         let total = (dt + self.owed).min(ParticleCloth::MAX_STEP);
         // Whole ticks; within a thousandth of one counts as whole (f32 frame times).
@@ -433,11 +433,17 @@ impl ParticleCloth {
             let mut worst = 0.0f32;
             for _ in 0..parts {
                 self.loads();
+                let force = self.force;
                 let strain = self.substep(h, gravity);
                 if !(strain <= STRETCH_LIMIT && self.positions.iter().all(|p| p.is_finite())) {
+                    // The undone substep's loads are not reported either.
                     self.undo();
+                    self.force = force;
                 }
-                worst = worst.max(strain);
+                // A NaN strain counts as the worst (f32::max would skip it).
+                if strain.is_nan() || strain > worst {
+                    worst = strain;
+                }
             }
             if worst > STRETCH_TOLERANCE || worst.is_nan() {
                 self.parts = (parts * 2).min(most);
@@ -482,7 +488,8 @@ impl ParticleCloth {
     pub const LONGEST_TICK: f32 = 4e-3;
 
     /// Longest step simulated, s: a longer one (a hitch) is simulated as this long, so a frame
-    /// costs at most 25 ticks (three 60 Hz frames' worth), however long it took. The
+    /// costs at most three 60 Hz frames' worth of ticks (25 of the default 2 ms), however long
+    /// it took. The
     /// [`PhysicalCloth`](super::physical_cloth::PhysicalCloth) plugin holds each rendered frame to
     /// the same budget over all its fixed steps.
     pub const MAX_STEP: f32 = 0.05;

@@ -126,7 +126,7 @@ impl WindField {
                     (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
                     |(low, high), p| (low.min(*p), high.max(*p)),
                 );
-                // A NaN point: every mover (its reads are the field's guarded ones anyway).
+                // An infinite point (or a batch of NaNs): every mover, as an unculled read.
                 near = if low.is_finite() && high.is_finite() {
                     self.movers_near(low, high)
                 } else {

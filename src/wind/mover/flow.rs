@@ -9,7 +9,7 @@
 //!   meets the body's boundary condition u · n = V · n on the sphere. Inside the sphere the
 //!   value on its surface along the same ray is used (the air a player stands in is the air it
 //!   carries), so |u| ≤ |V| everywhere. It fades to zero between 5 R and 8 R (at 5 R it is
-//!   already 0.4 % of V).
+//!   at most 0.8 % of V).
 //! - **Ground** (method of images, Milne-Thomson, *Theoretical Hydrodynamics*, §16.50): a second
 //!   dipole mirrored in the ground plane, with the vertical part of V reversed, so no air flows
 //!   through the ground; it doubles the flow along the ground under a low body (what lifts
