@@ -309,6 +309,32 @@ fn it_hangs_still_in_light_air_and_swings_moderately_in_a_breeze() {
     }
 }
 
+/// How far `run`'s frequency, swing and drag are from `reference`'s (relative), printed under
+/// `label`, and the two runs described for an assertion's message.
+fn compare(label: &str, reference: &Run, run: &Run) -> ([f32; 3], String) {
+    let off = |a: f32, b: f32| a / b - 1.0;
+    let [f, swing, drag] = [
+        off(run.stats.frequency, reference.stats.frequency),
+        off(run.swing, reference.swing),
+        off(run.drag, reference.drag),
+    ];
+    println!(
+        "{label}: frequency {:+.1} %, swing {:+.1} %, drag {:+.1} %",
+        100.0 * f,
+        100.0 * swing,
+        100.0 * drag
+    );
+    let report = format!("{}\n{}", describe(reference), describe(run));
+    ([f.abs(), swing.abs(), drag.abs()], report)
+}
+
+/// The shared run of 24 rows in `speed` m/s with ticks of 1 ms.
+fn short_ticks(speed: f32) -> &'static Run {
+    RUNS.iter()
+        .find(|r| r.rows == 24 && r.speed == speed && r.tick == 1e-3)
+        .unwrap()
+}
+
 #[test]
 fn its_motion_is_the_same_on_any_grid_and_tick() {
     // 24 and 32 rows against 48 at 8 and 12 m/s (60 s; any frame rate of 50–200 a second moves
@@ -316,42 +342,17 @@ fn its_motion_is_the_same_on_any_grid_and_tick() {
     // frequency within 5 %, swing and drag within 15 %; ticks of 2 ms against 1 ms at 24 rows:
     // frequency and drag within 5 % (the swing: `ticks_give_the_same_flag`, ignored).
     for speed in [8.0, 12.0] {
-        let fine = find(48, speed);
         for rows in [24, 32] {
-            let coarse = find(rows, speed);
-            let off = |a: f32, b: f32| (a / b - 1.0).abs();
-            let report = format!("{}\n{}", describe(fine), describe(coarse));
-            println!(
-                "{speed} m/s, {rows} rows against 48: frequency {:+.1} %, swing {:+.1} %, drag {:+.1} %",
-                100.0 * (coarse.stats.frequency / fine.stats.frequency - 1.0),
-                100.0 * (coarse.swing / fine.swing - 1.0),
-                100.0 * (coarse.drag / fine.drag - 1.0)
-            );
-            assert!(
-                off(coarse.stats.frequency, fine.stats.frequency) <= 0.05,
-                "{report}"
-            );
-            assert!(off(coarse.drag, fine.drag) <= 0.15, "{report}");
-            assert!(off(coarse.swing, fine.swing) <= 0.15, "{report}");
+            let label = format!("{speed} m/s, {rows} rows against 48");
+            let ([f, swing, drag], report) = compare(&label, find(48, speed), find(rows, speed));
+            assert!(f <= 0.05, "{report}");
+            assert!(drag <= 0.15, "{report}");
+            assert!(swing <= 0.15, "{report}");
         }
-        let default = find(24, speed);
-        let short = RUNS
-            .iter()
-            .find(|r| r.rows == 24 && r.speed == speed && r.tick == 1e-3)
-            .unwrap();
-        let off = |a: f32, b: f32| (a / b - 1.0).abs();
-        let report = format!("{}\n{}", describe(short), describe(default));
-        println!(
-            "{speed} m/s, ticks of 2 ms against 1 ms: frequency {:+.1} %, swing {:+.1} %, drag {:+.1} %",
-            100.0 * (default.stats.frequency / short.stats.frequency - 1.0),
-            100.0 * (default.swing / short.swing - 1.0),
-            100.0 * (default.drag / short.drag - 1.0)
-        );
-        assert!(
-            off(default.stats.frequency, short.stats.frequency) <= 0.05,
-            "{report}"
-        );
-        assert!(off(default.drag, short.drag) <= 0.05, "{report}");
+        let label = format!("{speed} m/s, ticks of 2 ms against 1 ms");
+        let ([f, _, drag], report) = compare(&label, short_ticks(speed), find(24, speed));
+        assert!(f <= 0.05, "{report}");
+        assert!(drag <= 0.05, "{report}");
     }
 }
 
@@ -467,18 +468,14 @@ fn ticks_give_the_same_flag() {
     let longer = runs(&[(24, 8.0, 4e-3), (24, 12.0, 4e-3)]);
     let defaults = [find(24, 8.0), find(24, 12.0)];
     for long in longer.iter().chain(defaults) {
-        let short = RUNS
-            .iter()
-            .find(|r| r.rows == 24 && r.speed == long.speed && r.tick == 1e-3)
-            .unwrap();
-        let off = |a: f32, b: f32| (a / b - 1.0).abs();
-        let report = format!("{}\n{}", describe(short), describe(long));
-        println!("{report}");
-        assert!(
-            off(long.stats.frequency, short.stats.frequency) <= 0.05,
-            "{report}"
+        let label = format!(
+            "{} m/s, ticks of {:.0} ms against 1 ms",
+            long.speed,
+            long.tick * 1e3
         );
-        assert!(off(long.swing, short.swing) <= 0.05, "{report}");
-        assert!(off(long.drag, short.drag) <= 0.05, "{report}");
+        let ([f, swing, drag], report) = compare(&label, short_ticks(long.speed), long);
+        assert!(f <= 0.05, "{report}");
+        assert!(swing <= 0.05, "{report}");
+        assert!(drag <= 0.05, "{report}");
     }
 }
