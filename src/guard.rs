@@ -49,16 +49,31 @@ pub(crate) fn clamp_length(v: Vec3, max: f32) -> Vec3 {
 }
 
 /// Why a position cannot start a simulation: `None` when it is finite and within
-/// ±[`MAX_COORDINATE`] on every axis, otherwise the offending value (the largest magnitude, or
-/// NaN).
+/// ±[`MAX_COORDINATE`] on every axis, otherwise the offending value (the component of the
+/// largest magnitude, or NaN).
 pub(crate) fn bad_position(p: Vec3) -> Option<f32> {
-    if p.is_nan() {
-        Some(f32::NAN)
-    } else if p.abs().max_element() > MAX_COORDINATE {
-        Some(p.abs().max_element())
-    } else {
-        None
+    let largest = largest_component(p);
+    (largest.is_nan() || largest.abs() > MAX_COORDINATE).then_some(largest)
+}
+
+/// The component of `v` of the largest magnitude, with its sign (the first of equals), NaN if
+/// any is NaN (glam's `max_element` passes over a NaN): the value an error about `v` names.
+pub(crate) fn largest_component(v: Vec3) -> f32 {
+    if v.is_nan() {
+        return f32::NAN;
     }
+    v.to_array()
+        .into_iter()
+        .fold(0.0f32, |m, c| if c.abs() > m.abs() { c } else { m })
+}
+
+/// The first component of `v` (x, y, z) that `ok` refuses, as a value an error can name.
+pub(crate) fn first_refused(v: Vec3, ok: impl Fn(usize, f32) -> bool) -> Option<f32> {
+    v.to_array()
+        .into_iter()
+        .enumerate()
+        .find(|&(axis, c)| !ok(axis, c))
+        .map(|(_, c)| c)
 }
 
 /// Why a global transform cannot place a simulation: `None` when it is finite, invertible

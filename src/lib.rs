@@ -137,7 +137,9 @@
 //! or `WindPlugin::new(config).in_schedule(schedule)`), in
 //! public sets you can order your own systems against ([`WindfallSystems`], in [`schedule`]):
 //! `Prepare` (before the fixed loop: live settings are taken in), `Wind` (the wind clock),
-//! `Simulate` (everything the wind moves) and `WriteBack` (in [`PostUpdate`](bevy::app::PostUpdate), before transform
+//! `Simulate` (everything the wind moves, one domain after another: [`SimulateSystems`]
+//! `Falls`, `Clouds`, `Cloth`, `Aero`; in `Update`, skipped on frames whose time does not move) and
+//! `WriteBack` (in [`PostUpdate`](bevy::app::PostUpdate), before transform
 //! propagation: new objects are released, bodies posed, meshes written). Bodies moved on the
 //! fixed step are posed between their last two steps by the frame's overstep, as avian
 //! interpolates, so motion is smooth at any frame rate; the pose lags the simulation by up to
@@ -153,6 +155,17 @@
 //! App::new()
 //!     .add_plugins((MinimalPlugins, WindfallPlugins))
 //!     .add_systems(FixedUpdate, my_fan.in_set(WindfallSystems::Simulate));
+//!
+//! // Between two domains: after the leaves, before the cloth.
+//! fn between_leaves_and_cloth() {}
+//! App::new()
+//!     .add_plugins((MinimalPlugins, WindfallPlugins))
+//!     .add_systems(
+//!         FixedUpdate,
+//!         between_leaves_and_cloth
+//!             .after(SimulateSystems::Clouds)
+//!             .before(SimulateSystems::Cloth),
+//!     );
 //! ```
 //!
 //! # Live settings, reflection and the inspector
@@ -282,7 +295,7 @@ pub use guard::MAX_COORDINATE;
 #[cfg(feature = "gizmos")]
 pub use plugins::WindfallDebugPlugin;
 pub use plugins::WindfallPlugins;
-pub use schedule::{WindfallSchedule, WindfallSystems};
+pub use schedule::{SimulateSystems, WindfallSchedule, WindfallSystems};
 
 /// What a game spawns and configures: the plugins, the components, the wind and its settings.
 /// The papers' machinery (trajectory databases, the Tanabe–Kaneko model, descriptors, spectra)
@@ -306,5 +319,5 @@ pub mod prelude {
         SpatialMode, TemporalMode, WindConfig, WindError, WindField, WindMover, WindPlugin,
         WindSettings, WindShelter, WindSource,
     };
-    pub use crate::{WindfallPlugins, WindfallSchedule, WindfallSystems};
+    pub use crate::{SimulateSystems, WindfallPlugins, WindfallSchedule, WindfallSystems};
 }

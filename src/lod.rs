@@ -25,7 +25,7 @@ use crate::error::InvalidValue;
 use std::f32::consts::PI;
 
 use bevy::ecs::prelude::*;
-use bevy::math::Vec3;
+use bevy::math::{DVec3, Vec3};
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::GlobalTransform;
@@ -70,18 +70,20 @@ impl LodTiers {
     /// named; on a [`FallLod`](crate::freefall::FallLod) or [`ClothLod`](crate::cloth::ClothLod)
     /// they turn the levels of detail off and put a [`LodInvalid`] on the entity.)
     pub fn steps_at(&self, distance: Option<f32>) -> u32 {
-        self.steps_at_squared(distance.map(|d| d * d.abs()))
+        self.steps_at_squared(distance.map(|d| f64::from(d) * f64::from(d.abs())))
     }
 
-    /// [`Self::steps_at`] from the squared distance (no square root per object).
-    pub(crate) fn steps_at_squared(&self, squared: Option<f32>) -> u32 {
+    /// [`Self::steps_at`] from the squared distance (no square root per object), in f64: the
+    /// square of any f32 distance or threshold, up to `f32::MAX`, is exact enough and finite.
+    pub(crate) fn steps_at_squared(&self, squared: Option<f64>) -> u32 {
         if self.check().is_err() {
             return 1;
         }
+        let (near, far) = (f64::from(self.near), f64::from(self.far));
         // (Checked: 0 ≤ near ≤ far. An infinite distance never reaches an infinite threshold.)
         match squared {
-            Some(d2) if self.far < f32::INFINITY && d2 >= self.far * self.far => 4,
-            Some(d2) if self.near < f32::INFINITY && d2 >= self.near * self.near => 2,
+            Some(d2) if far < f64::INFINITY && d2 >= far * far => 4,
+            Some(d2) if near < f64::INFINITY && d2 >= near * near => 2,
             _ => 1,
         }
     }
@@ -280,12 +282,13 @@ impl Focus {
 
     /// The tier (1, 2 or 4) of `tiers` for something at `at`: by its distance, or the coarsest
     /// the tiers allow when it is off screen and beyond `near`.
+    /// Measured in f64: no distance between two f32 positions overflows.
     pub fn tier(&self, tiers: &LodTiers, at: Vec3) -> u32 {
-        let offset = at - self.position;
+        let offset = at.as_dvec3() - self.position.as_dvec3();
         let squared = offset.length_squared();
         let by_distance = tiers.steps_at_squared(Some(squared));
         if by_distance > 1 && !self.sees(offset, squared) {
-            tiers.steps_at_squared(Some(f32::INFINITY))
+            tiers.steps_at_squared(Some(f64::INFINITY))
         } else {
             by_distance
         }
@@ -294,10 +297,11 @@ impl Focus {
     /// Whether `offset` (from the focus, |offset|² = `squared`) lies in the view's cone: the
     /// angle to the forward direction at most the half angle, cos θ = f·o / |o| ≥ c, compared
     /// squared (no square root per object).
-    fn sees(&self, offset: Vec3, squared: f32) -> bool {
+    fn sees(&self, offset: DVec3, squared: f64) -> bool {
         let Some((forward, cos_half)) = self.view else {
             return true;
         };
+        let (forward, cos_half) = (forward.as_dvec3(), f64::from(cos_half));
         let along = forward.dot(offset);
         let bound = cos_half * cos_half * squared;
         match (along >= 0.0, cos_half >= 0.0) {

@@ -22,7 +22,7 @@ use bevy::time::{Fixed, Time};
 /// |---|---|---|
 /// | `Prepare` | `RunFixedMainLoop`, before the fixed loop | live wind settings are taken in |
 /// | `Wind` | the simulation schedule ([`FixedUpdate`]) | a rebuilt field lands; the wind clock advances |
-/// | `Simulate` | the simulation schedule, after `Wind` | falling objects, cloth, aero bodies move |
+/// | `Simulate` | the simulation schedule, after `Wind` | falling objects, cloth, aero bodies move, one domain after another ([`SimulateSystems`]); in `Update`, only on frames whose time moves |
 /// | `WriteBack` | [`PostUpdate`], before transform propagation | objects are released and posed, meshes written |
 #[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum WindfallSystems {
@@ -30,10 +30,58 @@ pub enum WindfallSystems {
     Prepare,
     /// Advance the wind clock.
     Wind,
-    /// Move the objects the wind acts on.
+    /// Move the objects the wind acts on, in the order of [`SimulateSystems`]. In a schedule
+    /// that is not on the fixed timestep (`Update`), skipped on a frame whose time does not move
+    /// (a paused `Time<Virtual>`), so a paused game shows every body where it was.
     Simulate,
     /// After the simulation, before transform propagation: poses and meshes.
     WriteBack,
+}
+
+/// The stages of [`WindfallSystems::Simulate`], one per domain, in this order (each part of the
+/// crate steps in its own, as avian's `PhysicsStepSystems` order a physics step): a system of
+/// yours can run after the leaves and before the cloth.
+///
+/// | set | what moves |
+/// |---|---|
+/// | `Falls` | single falling objects ([`FallingObject`](crate::freefall::FallingObject)) |
+/// | `Clouds` | leaf clouds ([`LeafCloud`](crate::freefall::LeafCloud)) |
+/// | `Cloth` | procedural cloth ([`Cloth`](crate::cloth::Cloth)) |
+/// | `Aero` | rigid aero bodies and particle cloth ([`AeroBody`](crate::aero::AeroBody), [`PhysicalCloth`](crate::aero::PhysicalCloth)) |
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_windfall::prelude::*;
+///
+/// // Reads where the leaves are before the cloth moves.
+/// fn between(clouds: Query<&bevy_windfall::freefall::cloud::LeafCloudState>) { let _ = clouds; }
+///
+/// App::new().add_plugins((MinimalPlugins, WindfallPlugins)).add_systems(
+///     FixedUpdate,
+///     between.after(SimulateSystems::Clouds).before(SimulateSystems::Cloth),
+/// );
+/// ```
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SimulateSystems {
+    /// Single falling objects.
+    Falls,
+    /// Leaf clouds.
+    Clouds,
+    /// Procedural cloth.
+    Cloth,
+    /// Rigid aero bodies and particle cloth.
+    Aero,
+}
+
+/// Marks that [`WindfallSystems::Simulate`] waits for time to move in the frame-rate schedule
+/// it runs in.
+#[derive(Resource)]
+struct PausableIn;
+
+/// Whether this frame's time moves: in a frame-rate schedule, [`WindfallSystems::Simulate`]
+/// runs only then.
+fn time_moves(time: bevy::ecs::system::Res<Time>) -> bool {
+    time.delta() > std::time::Duration::ZERO
 }
 
 /// The schedule the simulation runs in (a resource, inserted by the first plugin added;
@@ -106,6 +154,13 @@ pub(crate) fn configure_sets(app: &mut App, schedule: InternedScheduleLabel) {
         }
         Some(_) => {}
     }
+    // A frame-rate schedule steps by the frame's time, which is zero while `Time<Virtual>` is
+    // paused (a fixed step always has its timestep). Once per schedule: every plugin calls this.
+    let fixed = WindfallSchedule(schedule).is_fixed();
+    if !fixed && !app.world().contains_resource::<PausableIn>() {
+        app.insert_resource(PausableIn)
+            .configure_sets(schedule, WindfallSystems::Simulate.run_if(time_moves));
+    }
     app.register_type::<WindfallSchedule>()
         .configure_sets(
             schedule,
@@ -117,6 +172,17 @@ pub(crate) fn configure_sets(app: &mut App, schedule: InternedScheduleLabel) {
                 WindfallSystems::WriteBack,
             )
                 .chain(),
+        )
+        .configure_sets(
+            schedule,
+            (
+                SimulateSystems::Falls,
+                SimulateSystems::Clouds,
+                SimulateSystems::Cloth,
+                SimulateSystems::Aero,
+            )
+                .chain()
+                .in_set(WindfallSystems::Simulate),
         )
         .configure_sets(
             RunFixedMainLoop,

@@ -162,8 +162,8 @@ const MAX_GRAVITY: f32 = 1.0e4;
 impl AeroBody {
     /// Checks what a step needs: `gravity` and the state the body is in (or starts from).
     fn check(&self, state: &PlateState) -> Result<(), AeroError> {
-        let g = self.gravity.abs().max_element();
-        if g.is_nan() || g > MAX_GRAVITY {
+        let g = crate::guard::largest_component(self.gravity);
+        if g.is_nan() || g.abs() > MAX_GRAVITY {
             return Err(AeroError::Invalid(InvalidValue {
                 field: "gravity",
                 value: g,

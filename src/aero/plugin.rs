@@ -8,7 +8,7 @@ use super::physical_cloth::{
     PhysicalCloth, PhysicalClothInvalid, PhysicalClothState, step_cloths, write_cloth_meshes,
 };
 use crate::lifecycle::set_up_changed;
-use crate::schedule::WindfallSystems;
+use crate::schedule::{SimulateSystems, WindfallSystems};
 
 crate::schedule::simulation_plugin!(
     /// Moves every [`AeroBody`] and [`PhysicalCloth`] on the fixed timestep.
@@ -32,7 +32,7 @@ impl Plugin for AeroPlugin {
                     step_bodies.run_if(any_with_component::<AeroState>),
                     step_cloths.run_if(any_with_component::<PhysicalClothState>),
                 )
-                    .in_set(WindfallSystems::Simulate),
+                    .in_set(SimulateSystems::Aero),
             )
             // Set up in the frame the cloth is added (or changed), before its mesh is written.
             .add_systems(

@@ -15,7 +15,7 @@ use super::params::ClothError;
 use super::sim::{ClothAttachment, ClothSim};
 use crate::lifecycle::set_up_changed;
 use crate::lod::{LodFocus, LodTiers};
-use crate::schedule::WindfallSystems;
+use crate::schedule::{SimulateSystems, WindfallSystems};
 use crate::wind::WindField;
 
 crate::schedule::simulation_plugin!(
@@ -54,7 +54,7 @@ impl Plugin for ClothPlugin {
                 schedule,
                 step_cloths
                     .run_if(any_with_component::<Cloth>)
-                    .in_set(WindfallSystems::Simulate),
+                    .in_set(SimulateSystems::Cloth),
             );
     }
 }

@@ -15,7 +15,7 @@ use super::object::{FallSettings, FallState, FallingObject, FallingObjectInvalid
 use super::store::air::Air;
 use super::store::driver::Step;
 use crate::lod::LodFocus;
-use crate::schedule::WindfallSystems;
+use crate::schedule::{SimulateSystems, WindfallSystems};
 use crate::wind::WindField;
 
 crate::schedule::simulation_plugin!(
@@ -50,7 +50,7 @@ impl Plugin for FallPlugin {
             .add_systems(
                 schedule,
                 step_objects
-                    .in_set(WindfallSystems::Simulate)
+                    .in_set(SimulateSystems::Falls)
                     .run_if(any_with_component::<FallingObject>),
             )
             // Releasing here (not in the simulation) reads the transform the user set this

@@ -361,6 +361,84 @@ fn bodies_move_smoothly_at_144_hz_over_a_60_hz_step() {
     }
 }
 
+/// Pausing `Time<Virtual>` freezes what is on screen: in the frames after the pause every body
+/// (falling object, rigid plate, particle cloth, procedural cloth) shows exactly the pose of the
+/// last frame before it, and after the pause it moves on from there; with the simulation on the
+/// fixed step (144 Hz frames) and in `Update`.
+#[test]
+fn a_paused_game_shows_every_body_where_it_was() {
+    paused_frames_show_the_last_poses(WindfallPlugins);
+    paused_frames_show_the_last_poses(WindfallPlugins::new(Update));
+}
+
+fn paused_frames_show_the_last_poses(plugins: WindfallPlugins) {
+    let mut app = headless_app_with_meshes();
+    app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+        1.0 / 144.0,
+    )))
+    .add_plugins(plugins);
+    ready(&mut app);
+    let sheet = app
+        .world_mut()
+        .spawn((
+            FallPreset::PaperSheet.object(),
+            Transform::from_xyz(0.0, 12.0, 0.0),
+        ))
+        .id();
+    let plate = app
+        .world_mut()
+        .spawn((card(), Transform::from_xyz(2.0, 30.0, 0.0)))
+        .id();
+    let cloth = app
+        .world_mut()
+        .spawn((physical_flag(), Transform::from_xyz(4.0, 4.0, 0.0)))
+        .id();
+    let flag = app
+        .world_mut()
+        .spawn((small_flag(), Transform::from_xyz(8.0, 4.0, 0.0)))
+        .id();
+    let tracks: [(&str, Probe, Entity); 4] = [
+        ("falling object", pose, sheet),
+        ("rigid plate", pose, plate),
+        ("particle cloth", meshes_positions, cloth),
+        ("procedural cloth", meshes_positions, flag),
+    ];
+    let shown =
+        |app: &App| -> Vec<Vec<Vec3>> { tracks.iter().map(|(_, f, e)| f(app, *e)).collect() };
+    // Pause at several shares of a fixed step, each after a few frames of motion.
+    for frames in [1, 5, 17, 30] {
+        for _ in 0..frames {
+            app.update();
+        }
+        let before = shown(&app);
+        app.world_mut().resource_mut::<Time<Virtual>>().pause();
+        for frame in 0..6 {
+            app.update();
+            let now = shown(&app);
+            for (i, (name, _, _)) in tracks.iter().enumerate() {
+                let moved = displacement(&before[i], &now[i]);
+                assert!(
+                    moved == 0.0,
+                    "{name} moved {moved} m in paused frame {frame} (after {frames} frames)"
+                );
+            }
+        }
+        app.world_mut().resource_mut::<Time<Virtual>>().unpause();
+    }
+    // And it moves again.
+    let before = shown(&app);
+    for _ in 0..12 {
+        app.update();
+    }
+    let after = shown(&app);
+    for (i, (name, _, _)) in tracks.iter().enumerate() {
+        assert!(
+            displacement(&before[i], &after[i]) > 0.0,
+            "{name} stays paused"
+        );
+    }
+}
+
 /// An app of `plugins` whose frames last 40 ms, set up.
 fn frames_of_40_ms<M>(plugins: impl bevy::app::Plugins<M>) -> App {
     let mut app = App::new();

@@ -169,14 +169,44 @@ fn a_cloud_leaf_falls_exactly_as_a_single_path() {
 
 #[test]
 fn distant_leaves_follow_the_same_path_in_still_air() {
+    distant_leaves_of(FallPreset::MapleLeaf, 42);
+}
+
+/// The same for every leaf-like preset and two seeds. Missed: the worst leaf after 4 s is
+/// 1.1 mm away for the maple leaf, 1.3–2.1 mm for the oak leaf, 2.5–3.3 mm for the birch leaf
+/// and the samara, 7.5–8.2 mm for `Leaf` and 10.3–11.2 mm for the paper sheet, whose chains
+/// blend motions often: a blend is summed over the steps it spans, so four times fewer steps
+/// sum it differently.
+#[test]
+#[ignore = "missed: up to 11 mm for the paper sheet (measured), target 2 mm"]
+fn distant_leaves_of_every_preset_follow_the_same_path_in_still_air() {
+    for preset in [
+        FallPreset::MapleLeaf,
+        FallPreset::Leaf,
+        FallPreset::OakLeaf,
+        FallPreset::BirchLeaf,
+        FallPreset::PaperSheet,
+        FallPreset::Samara,
+    ] {
+        for seed in [42, 7] {
+            distant_leaves_of(preset, seed);
+        }
+    }
+}
+
+fn distant_leaves_of(preset: FallPreset, seed: u64) {
     let model = FallModel::default();
-    let description = cloud(
-        400,
-        LodTiers {
-            near: 1.0,
-            far: 2.0,
-        },
-    );
+    let description = LeafCloud {
+        object: preset.object(),
+        seed,
+        ..cloud(
+            400,
+            LodTiers {
+                near: 1.0,
+                far: 2.0,
+            },
+        )
+    };
     // No ground in reach: a leaf stepped every fourth step would land up to three steps late.
     let mut full = description.leaves(&model, -1.0e3).unwrap();
     let mut far = full.clone();
@@ -208,7 +238,7 @@ fn distant_leaves_follow_the_same_path_in_still_air() {
         })
         .collect();
     let worst = gaps.iter().copied().fold(0.0f32, f32::max);
-    assert!(worst < 2e-3, "worst {worst} m");
+    assert!(worst < 2e-3, "{preset:?}, seed {seed}: worst {worst} m");
 }
 
 #[test]
@@ -552,4 +582,43 @@ fn hostile_clouds_are_refused_by_name_or_stay_finite() {
         }
     }
     report("cloud");
+}
+
+/// A leaf taken out of a tiered cloud (`single`) advances on every `advance`, as its docs say:
+/// first over the time since its own last step in the cloud, then by each `dt`.
+#[test]
+fn a_single_leaf_of_a_tiered_cloud_advances_every_call() {
+    let model = FallModel::default();
+    let description = cloud(
+        8,
+        LodTiers {
+            near: 1.0,
+            far: 2.0,
+        },
+    );
+    let mut leaves = description.leaves(&model, -1.0e3).unwrap();
+    let far_away = step_in(&model, None, DT, Some(Vec3::splat(1.0e4)));
+    for _ in 0..10 {
+        leaves.step(&far_away, None);
+    }
+    let clock = leaves.clock() as f32;
+    for i in 0..leaves.len() {
+        let mut single = leaves.single(i).unwrap();
+        let behind = clock - single.time();
+        assert!(
+            (-1e-5..4.0 * DT).contains(&behind),
+            "leaf {i}: {behind} s behind"
+        );
+        for k in 1..=8 {
+            let before = single.position();
+            single.advance(&model, DT, Vec3::ZERO, &tilt());
+            let expected = clock + k as f32 * DT;
+            assert!(
+                (single.time() - expected).abs() < 1e-4,
+                "leaf {i}, advance {k}: at {} s, not {expected}",
+                single.time()
+            );
+            assert!(single.position() != before, "leaf {i} held still");
+        }
+    }
 }

@@ -194,3 +194,74 @@ fn a_fall_let_go_high_up_moves_at_its_speed() {
         );
     }
 }
+
+/// The value a refusal names, as `InvalidValue` promises: the offending component (NaN for a
+/// NaN), not another component of the same vector.
+fn refused_value(error: bevy_windfall::freefall::FallError) -> (&'static str, f32) {
+    match error {
+        bevy_windfall::freefall::FallError::Invalid(invalid) => (invalid.field, invalid.value),
+        other => panic!("{other}"),
+    }
+}
+
+fn same(a: f32, b: f32) -> bool {
+    a == b || (a.is_nan() && b.is_nan())
+}
+
+/// A NaN anywhere in a release's velocity is refused (glam's `max_element` passes over a NaN, and
+/// the fall started with no drift); a region's refusal names its offending component.
+#[test]
+fn refusals_name_the_offending_component() {
+    let model = FallModel::default();
+    let object = FallingObject::default();
+    for (velocity, value) in [
+        (Vec3::new(f32::NAN, 1.0, 0.0), f32::NAN),
+        (Vec3::new(0.5, 0.0, f32::NAN), f32::NAN),
+        (Vec3::new(1.0, -2e4, 3.0), -2e4),
+        (Vec3::new(f32::INFINITY, 1.0, 0.0), f32::INFINITY),
+    ] {
+        let release = FallRelease {
+            velocity,
+            ..FallRelease::at(Vec3::new(0.0, 5.0, 0.0), 0.0)
+        };
+        for error in [
+            release.validate().unwrap_err(),
+            object.path(&model, release).unwrap_err(),
+        ] {
+            let (field, got) = refused_value(error);
+            assert_eq!(field, "release.velocity", "{velocity}");
+            assert!(same(got, value), "{velocity}: named {got}");
+        }
+    }
+    let region = |min: Vec3, max: Vec3| LeafCloud {
+        count: 10,
+        region: CloudRegion { min, max },
+        ..LeafCloud::default()
+    };
+    for (cloud, field, value) in [
+        (
+            region(Vec3::new(f32::NAN, 2.0, 2.0), Vec3::splat(3.0)),
+            "region.min",
+            f32::NAN,
+        ),
+        (
+            region(Vec3::new(-2e7, 2.0, 2.0), Vec3::splat(3.0)),
+            "region.min",
+            -2e7,
+        ),
+        (
+            region(Vec3::new(0.0, 2.0, 10.0), Vec3::new(1.0, 3.0, -40.0)),
+            "region.max",
+            -40.0,
+        ),
+        (
+            region(Vec3::ZERO, Vec3::new(1.0, f32::INFINITY, 2.0)),
+            "region.max",
+            f32::INFINITY,
+        ),
+    ] {
+        let (got_field, got) = refused_value(cloud.leaves(&model, 0.0).unwrap_err());
+        assert_eq!(got_field, field);
+        assert!(same(got, value), "{field}: named {got}, not {value}");
+    }
+}

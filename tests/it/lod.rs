@@ -396,3 +396,27 @@ fn bad_tiers_are_named_and_mean_full_detail_until_fixed() {
     }
     assert!(app.world().get::<LodInvalid>(leaves[1]).is_some());
 }
+
+/// Distances are measured without overflow: thresholds at `f32::MAX` with the focus 1e20 m away
+/// give full detail (the squares overflowed to ∞ ≥ ∞: tier 4), and points farther apart than
+/// `f32::MAX` are beyond any finite `far`.
+#[test]
+fn huge_distances_pick_the_tier_they_are_in() {
+    use bevy_windfall::lod::{Focus, LodTiers};
+    let widest = LodTiers {
+        near: f32::MAX,
+        far: f32::MAX,
+    };
+    let focus = Focus::from(Vec3::new(1e20, 0.0, 0.0));
+    assert_eq!(focus.tier(&widest, Vec3::ZERO), 1);
+    assert_eq!(widest.steps_at(Some(1e20)), 1);
+    assert_eq!(widest.steps_at(Some(f32::MAX)), 4);
+    let tiers = LodTiers {
+        near: 1e30,
+        far: 3e38,
+    };
+    let focus = Focus::from(Vec3::new(-3e38, 0.0, 0.0));
+    assert_eq!(focus.tier(&tiers, Vec3::new(3e38, 0.0, 0.0)), 4);
+    assert_eq!(focus.tier(&tiers, Vec3::new(-3e38, 1e20, 0.0)), 1);
+    assert_eq!(focus.tier(&tiers, Vec3::new(-3e38, 2e30, 0.0)), 2);
+}

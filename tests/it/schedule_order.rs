@@ -161,3 +161,108 @@ fn hash_vectors(hash: &mut Fnv, vectors: &[Vec3]) {
         hash.vector(*v);
     }
 }
+
+/// What a system ordered between the clouds and the particle cloth saw on each fixed step.
+#[derive(Resource, Default)]
+struct Seen {
+    /// The cloud's clock before any domain stepped.
+    before: Vec<f64>,
+    /// (the cloud's clock, the cloth's nodes) in the user's system.
+    between: Vec<(f64, Vec<Vec3>)>,
+    /// The cloth's nodes after the last domain stepped.
+    after: Vec<Vec<Vec3>>,
+}
+
+fn cloud_clock(world: &mut World) -> f64 {
+    let mut states = world.query::<&LeafCloudState>();
+    states
+        .iter(world)
+        .next()
+        .and_then(|s| s.leaves())
+        .map_or(f64::NAN, |l| l.clock())
+}
+
+fn cloth_nodes(world: &mut World) -> Vec<Vec3> {
+    let mut states = world.query::<&PhysicalClothState>();
+    states.single(world).unwrap().0.positions().to_vec()
+}
+
+/// A user's system ordered `.after(SimulateSystems::Clouds).before(SimulateSystems::Aero)` runs
+/// on every fixed step after the leaves have moved and before the particle cloth does, however
+/// the schedule is shuffled.
+#[test]
+fn a_system_runs_between_the_leaves_and_the_cloth() {
+    for shuffle in [None, Some(1), Some(2), Some(3)] {
+        let mut app = headless_app_with_meshes();
+        app.add_plugins(WindfallPlugins).init_resource::<Seen>();
+        let world = app.world_mut();
+        world.spawn(LeafCloud {
+            count: 50,
+            ..default()
+        });
+        world.spawn((physical_flag(), Transform::from_xyz(6.0, 4.0, 0.0)));
+        app.add_systems(
+            FixedUpdate,
+            (
+                (|world: &mut World| {
+                    let clock = cloud_clock(world);
+                    world.resource_mut::<Seen>().before.push(clock);
+                })
+                .after(WindfallSystems::Wind)
+                .before(SimulateSystems::Falls),
+                (|world: &mut World| {
+                    let seen = (cloud_clock(world), cloth_nodes(world));
+                    world.resource_mut::<Seen>().between.push(seen);
+                })
+                .after(SimulateSystems::Clouds)
+                .before(SimulateSystems::Aero),
+                (|world: &mut World| {
+                    let nodes = cloth_nodes(world);
+                    world.resource_mut::<Seen>().after.push(nodes);
+                })
+                .after(SimulateSystems::Aero),
+            ),
+        );
+        if let Some(seed) = shuffle {
+            let mut schedules = app.world_mut().resource_mut::<Schedules>();
+            for (_, schedule) in schedules.iter_mut() {
+                let settings = ScheduleBuildSettings {
+                    shuffle_seed: Some(seed),
+                    ..schedule.get_build_settings()
+                };
+                schedule.set_build_settings(settings);
+            }
+        }
+        ready(&mut app);
+        let steps_before = app.world().resource::<Seen>().between.len();
+        for _ in 0..20 {
+            app.update();
+        }
+        let dt = app
+            .world()
+            .resource::<Time<Fixed>>()
+            .timestep()
+            .as_secs_f64();
+        let seen = app.world().resource::<Seen>();
+        for (i, (clock, nodes)) in seen.between.iter().enumerate().skip(steps_before + 1) {
+            // The leaves have taken this step: the cloud's clock is a step past where it was
+            // before the domains stepped.
+            let before = seen.before[i];
+            assert!(
+                (clock - before - dt).abs() < 1e-9,
+                "step {i}: the cloud's clock {clock}, {before} before the step"
+            );
+            // The cloth has not: it is where the last step left it.
+            assert!(
+                nodes == &seen.after[i - 1],
+                "step {i}: the cloth moved first"
+            );
+            assert!(nodes != &seen.after[i], "step {i}: the cloth did not move");
+        }
+        assert!(
+            seen.between.len() >= steps_before + 20,
+            "{}",
+            seen.between.len()
+        );
+    }
+}

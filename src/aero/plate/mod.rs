@@ -79,9 +79,9 @@ impl PlateState {
             ("state.velocity", self.velocity),
             ("state.angular_velocity", self.angular_velocity),
         ] {
-            let largest = v.abs().max_element();
+            let largest = crate::guard::largest_component(v);
             InvalidValue::check(
-                !largest.is_nan() && largest <= PlateState::MAX_SPEED,
+                largest.abs() <= PlateState::MAX_SPEED,
                 field,
                 largest,
                 "must be finite and within ±1e6",

@@ -210,8 +210,11 @@ impl CloudLeaves {
         (0..self.store.handles() as u32).map(|h| self.store.view(h).expect("every leaf lives"))
     }
 
-    /// Leaf `index` on its own, as it is now: stepped alone from here in the same wind it
-    /// follows the same path as in the cloud, bit for bit.
+    /// Leaf `index` on its own, as it is now, at full detail: every
+    /// [`advance`](FallPath::advance) advances it. Stepped alone from here in the same wind, a
+    /// leaf of a cloud at full detail follows the same path as in the cloud, bit for bit; a leaf
+    /// on a coarser tier first catches up over the time since its own last step, then goes on at
+    /// full detail.
     pub fn single(&self, index: usize) -> Option<FallPath> {
         self.store
             .single(u32::try_from(index).ok()?)

@@ -153,20 +153,25 @@ impl LeafCloud {
             self.count as f32,
             "must be ≤ 4 000 000",
         )?;
-        let within =
-            |v: Vec3| v.is_finite() && v.abs().max_element() <= crate::guard::MAX_COORDINATE;
-        InvalidValue::check(
-            within(self.region.min),
-            "region.min",
-            self.region.min.max_element(),
-            "must be finite and within ±MAX_COORDINATE",
-        )?;
-        InvalidValue::check(
-            within(self.region.max) && !self.region.max.cmplt(self.region.min).any(),
-            "region.max",
-            self.region.max.min_element(),
-            "must be finite, within ±MAX_COORDINATE and ≥ region.min on every axis",
-        )?;
+        let within = |c: f32| c.abs() <= crate::guard::MAX_COORDINATE;
+        let (min, max) = (self.region.min, self.region.max);
+        if let Some(value) = crate::guard::first_refused(min, |_, c| within(c)) {
+            InvalidValue::check(
+                false,
+                "region.min",
+                value,
+                "must be finite and within ±MAX_COORDINATE",
+            )?;
+        }
+        let ordered = |axis: usize, c: f32| within(c) && c >= min.to_array()[axis];
+        if let Some(value) = crate::guard::first_refused(max, ordered) {
+            InvalidValue::check(
+                false,
+                "region.max",
+                value,
+                "must be finite, within ±MAX_COORDINATE and ≥ region.min on every axis",
+            )?;
+        }
         self.lod.check_as("lod.near", "lod.far")?;
         if let Some(t) = self.recycle_after {
             InvalidValue::check(

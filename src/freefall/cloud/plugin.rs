@@ -14,7 +14,7 @@ use crate::freefall::model::error::FallError;
 use crate::freefall::object::FallSettings;
 use crate::lifecycle::Described;
 use crate::lod::{LodFocus, LodTiers};
-use crate::schedule::WindfallSystems;
+use crate::schedule::{SimulateSystems, WindfallSystems};
 use crate::wind::WindField;
 
 /// Runtime state of a [`LeafCloud`] (required component): its leaves, what the last step did
@@ -73,7 +73,7 @@ impl Plugin for LeafCloudPlugin {
             .add_systems(
                 schedule,
                 step_clouds
-                    .in_set(WindfallSystems::Simulate)
+                    .in_set(SimulateSystems::Clouds)
                     .run_if(any_with_component::<LeafCloud>),
             )
             .add_systems(

@@ -61,9 +61,9 @@ impl FallRelease {
                 "must be a finite, non-zero quaternion",
             )?;
         }
-        let speed = self.velocity.abs().max_element();
+        let speed = crate::guard::largest_component(self.velocity);
         InvalidValue::check(
-            !speed.is_nan() && speed <= FallRelease::MAX_SPEED,
+            speed.abs() <= FallRelease::MAX_SPEED,
             "release.velocity",
             speed,
             "must be finite and within ±1e4 m/s",

@@ -300,19 +300,19 @@ impl<K: Constants> Store<K> {
             + self.places.capacity() * std::mem::size_of::<Place>()
     }
 
-    /// A store of fall `handle` alone, as it is now (handle 0, the same clock and constants):
-    /// stepped on from here in the same air, it follows the same path bit for bit.
+    /// A store of fall `handle` alone, as it is now (handle 0, the same clock and constants),
+    /// at full detail: it advances on every step. Stepped on from here in the same air, a fall
+    /// of a full-detail store follows the same path bit for bit; one that was on a coarser tier
+    /// catches up on its first step (over the time since its own last step), as it would on
+    /// coming nearer the focus.
     pub fn single(&self, handle: u32) -> Option<Self> {
         let place = self.place(handle)?;
         let band = &self.bands[place.band as usize];
         let s = place.index as usize;
         let mut one = Self::new(self.kind.clone());
         one.clock = self.clock;
-        one.places.push(Place {
-            band: place.band,
-            index: 0,
-        });
-        let target = &mut one.bands[place.band as usize];
+        one.places.push(Place { band: 0, index: 0 });
+        let target = &mut one.bands[0];
         target.push(band.cold[s].clone());
         target.blocks[0].copy_lane(0, &band.blocks[s / W], s % W);
         target.blocks[0].handle[0] = 0;

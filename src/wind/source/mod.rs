@@ -166,7 +166,7 @@ impl WindSource {
     /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), or a non-finite `velocity`.
     pub fn try_sphere(radius: f32, velocity: Vec3) -> Result<Self, WindError> {
         check_size("radius", radius)?;
-        let largest = velocity.abs().max_element();
+        let largest = crate::guard::largest_component(velocity);
         InvalidValue::check(largest.is_finite(), "velocity", largest, "must be finite")?;
         Ok(Self::sphere(radius, velocity))
     }
