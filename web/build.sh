@@ -9,8 +9,8 @@
 # version in Cargo.lock, about 2 minutes once) and wasm-opt (binaryen from npm, which runs on
 # Node.js; Debian's binaryen 108 is too old for wasm-bindgen's output). The first build takes
 # 20-30 minutes on two cores; the profile `web` (Cargo.toml) optimises for size with LTO.
-# WINDFALL_WEB_PROFILE=web-ci builds the same showcase faster and larger, without wasm-opt (CI's
-# browser checks).
+# WINDFALL_WEB_PROFILE=web-ci builds the same showcase faster and larger, without wasm-opt, npm or
+# Node.js (CI's browser checks).
 set -eu
 profile=${WINDFALL_WEB_PROFILE:-web}
 backend=${1:-webgl2}
@@ -35,10 +35,11 @@ if ! wasm-bindgen --version 2>/dev/null | grep -q " $version\$"; then
     # instead of 7.
     cargo install wasm-bindgen-cli --version "$version" --no-default-features
 fi
-# wasm-opt from binaryen 116 or later: the one on the PATH, else npm's package in target/.
+# wasm-opt from binaryen 116 or later: the one on the PATH, else npm's package in target/ (only
+# the size-optimised profile runs it).
 wasm_opt=wasm-opt
 opt_version=$(wasm-opt --version 2>/dev/null | sed -n 's/^wasm-opt version \([0-9]*\).*/\1/p')
-if [ "${opt_version:-0}" -lt 116 ]; then
+if [ "$profile" = web ] && [ "${opt_version:-0}" -lt 116 ]; then
     tools=target/web-tools
     wasm_opt=$tools/node_modules/.bin/wasm-opt
     if [ ! -x "$wasm_opt" ]; then

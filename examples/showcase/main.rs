@@ -13,7 +13,10 @@
 //! [--check-layout] [--frames N] [--screenshot PATH] [--tour DIR] [--window WxH] [--msaa N]`
 //! (on the web the page's address: `?scene=flag&blades=20000`).
 //!
-//! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits;
+//! `--tour DIR` visits every scene and saves `DIR/showcase_<scene>.png` in each, then exits
+//! (with `--film`, without the text and the panel, also the leaves' and the flag's last
+//! [`FILM_FRAMES`] frames before it, `DIR/film_<scene>_<nn>.png`: the README's moving picture,
+//! `docs/film.py`);
 //! `--gizmos` starts with the falling paths and cloth yarns drawn; `--blades N` sows N grass
 //! blades in the meadow (120 000 by default; a software renderer draws fewer faster);
 //! `--check-layout` visits every scene at 640 × 360, 960 × 540 and 1280 × 720 and fails if any
@@ -77,6 +80,7 @@ const OPTIONS: common::SceneOptions = common::SceneOptions(&[
     ("--blades", &["N"]),
     ("--gizmos", &[]),
     ("--check-layout", &[]),
+    ("--film", &[]),
 ]);
 
 /// Lines a scene shows under the common header.
@@ -99,7 +103,15 @@ struct Tour {
     /// The falls' fingerprint (`common::fingerprint`), computed before this app runs: an app
     /// updated from inside another app's system waits on the compute pool that system holds.
     fingerprint: u64,
+    /// The frame (of those played in the scene) last filmed.
+    filmed_at: Option<u32>,
+    /// `--film`: the frames before each moving scene's screenshot are saved too.
+    film: bool,
 }
+
+/// Frames of the leaves and the flag `--film` saves, the last before each scene's screenshot:
+/// two seconds on the recording clock (16 frames a second).
+const FILM_FRAMES: u32 = 32;
 
 fn main() {
     let mut app = common::example_app("bevy_windfall: showcase");
@@ -144,12 +156,21 @@ fn main() {
             frames_in_scene: 0,
             requested: false,
             fingerprint: common::fingerprint::fingerprint(None),
+            film: args.flag("--film"),
+            filmed_at: None,
         })
         .insert_state(Scene::ALL[0])
         .add_systems(Last, tour);
     }
+    // A film shows the scene alone: no header, no panel.
+    let film = args.tour.is_some() && args.flag("--film");
     #[cfg(feature = "egui")]
-    app.add_plugins(panel::plugin);
+    if !film {
+        app.add_plugins(panel::plugin);
+    }
+    if film {
+        app.insert_resource(text::Hidden);
+    }
     // The camera and the header text outlive the scenes; each scene places the camera when it
     // is entered, which for the first scene happens before `Startup`.
     let paths = args.flag("--gizmos");
@@ -265,9 +286,28 @@ fn tour(
     if tour.frames_in_scene.is_multiple_of(50) {
         info!("tour: scene {}, frame {}", tour.next, tour.frames_in_scene);
     }
-    if readiness.played() >= common::DEFAULT_SCREENSHOT_FRAME && !tour.requested {
+    let Some(&scene) = Scene::ALL.get(tour.next) else {
+        return; // The tour is over: the app is exiting.
+    };
+    let played = readiness.played();
+    let filmed = matches!(scene, Scene::Leaves | Scene::Flag);
+    if tour.film
+        && filmed
+        && !tour.requested
+        && (common::DEFAULT_SCREENSHOT_FRAME - FILM_FRAMES..common::DEFAULT_SCREENSHOT_FRAME)
+            .contains(&played)
+        && tour.filmed_at != Some(played)
+    {
+        // A plain save: only the scene's own screenshot moves the tour on.
+        tour.filmed_at = Some(played);
+        let n = played + FILM_FRAMES - common::DEFAULT_SCREENSHOT_FRAME;
+        let path = tour.dir.join(format!("film_{}_{n:02}.png", scene.name()));
+        commands
+            .spawn(bevy::render::view::screenshot::Screenshot::primary_window())
+            .observe(bevy::render::view::screenshot::save_to_disk(path));
+    }
+    if played >= common::DEFAULT_SCREENSHOT_FRAME && !tour.requested {
         tour.requested = true;
-        let scene = Scene::ALL[tour.next];
         let path = tour.dir.join(format!("showcase_{}.png", scene.name()));
         check.write(common::CheckLayout(path.display().to_string()));
         common::take_screenshot(&mut commands, path);

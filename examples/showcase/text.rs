@@ -30,10 +30,19 @@ impl SceneLabel {
     pub const WIDE: f32 = 800.0;
 }
 
+/// No text on screen (the tour's `--film`).
+#[derive(Resource)]
+pub struct Hidden;
+
 pub fn plugin(app: &mut App) {
     app.init_resource::<Hud>()
         .init_resource::<Drawn>()
-        .add_systems(EguiPrimaryContextPass, (draw_text, check_layout).chain());
+        .add_systems(
+            EguiPrimaryContextPass,
+            (draw_text, check_layout)
+                .chain()
+                .run_if(not(resource_exists::<Hidden>)),
+        );
 }
 
 /// Space between text, panels and the window's edges, logical pixels.
