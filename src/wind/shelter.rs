@@ -73,36 +73,31 @@ impl Default for WindShelter {
 
 impl WindShelter {
     /// A solid wall (or hedge, or house) of `half_extents`: its lee is 8 heights long and loses
-    /// up to 85 % of the wind. Non-finite or negative sizes become 0 (no shelter).
+    /// up to 85 % of the wind. Sizes a plugin cannot place (see [`Self::validate`]) shelter
+    /// nothing and the entity gets a [`WindShelterInvalid`] naming the side.
     pub fn wall(half_extents: Vec3) -> Self {
         Self {
             kind: ShelterKind::Wall {
                 lee_heights: 8.0,
                 depth: 0.85,
             },
-            half_extents: half_extents.map(size),
+            half_extents,
         }
     }
 
-    /// Checks the numbers a plugin would place: half extents finite and ≥ 0, and for a wall
-    /// `lee_heights` finite and ≥ 0 and `depth` in [0, 1]. What fails here shelters nothing and
-    /// the entity gets a [`WindShelterInvalid`] naming the field.
+    /// Checks the numbers a plugin would place: half extents finite and within
+    /// 0..=[`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), and for a wall `lee_heights` finite
+    /// and ≥ 0 and `depth` in [0, 1]. What fails here shelters nothing and the entity gets a
+    /// [`WindShelterInvalid`] naming the field.
     ///
     /// # Errors
-    /// The first field that fails, named (`half_extents`, `kind.lee_heights`, `kind.depth`).
+    /// The first field that fails, named (`half_extents.x`, `.y`, `.z`, `kind.lee_heights`,
+    /// `kind.depth`).
     pub fn validate(&self) -> Result<(), WindError> {
         let h = self.half_extents;
-        let worst = if h.is_finite() {
-            h.min_element()
-        } else {
-            f32::NAN
-        };
-        InvalidValue::check(
-            h.is_finite() && h.min_element() >= 0.0,
-            "half_extents",
-            worst,
-            "must be finite and ≥ 0",
-        )?;
+        check_size("half_extents.x", h.x)?;
+        check_size("half_extents.y", h.y)?;
+        check_size("half_extents.z", h.z)?;
         if let ShelterKind::Wall { lee_heights, depth } = self.kind {
             InvalidValue::check(
                 lee_heights.is_finite() && lee_heights >= 0.0,
@@ -124,35 +119,9 @@ impl WindShelter {
     pub fn indoor(half_extents: Vec3) -> Self {
         Self {
             kind: ShelterKind::Indoor,
-            half_extents: half_extents.map(size),
+            half_extents,
         }
     }
-
-    /// [`Self::wall`], refusing half extents that are negative, not finite or above
-    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE) (as the sources' `try_` constructors
-    /// refuse their sizes).
-    ///
-    /// # Errors
-    /// The first bad side, named (`half_extents.x`, `.y` or `.z`).
-    pub fn try_wall(half_extents: Vec3) -> Result<Self, WindError> {
-        check_extents(half_extents)?;
-        Ok(Self::wall(half_extents))
-    }
-
-    /// [`Self::indoor`], refusing half extents as [`Self::try_wall`] does.
-    ///
-    /// # Errors
-    /// The first bad side, named (`half_extents.x`, `.y` or `.z`).
-    pub fn try_indoor(half_extents: Vec3) -> Result<Self, WindError> {
-        check_extents(half_extents)?;
-        Ok(Self::indoor(half_extents))
-    }
-}
-
-fn check_extents(h: Vec3) -> Result<(), WindError> {
-    check_size("half_extents.x", h.x)?;
-    check_size("half_extents.y", h.y)?;
-    check_size("half_extents.z", h.z)
 }
 
 /// The width of the transition at a room's walls, m.

@@ -97,7 +97,7 @@ fn one_bad_source_never_cancels_the_others() {
             strength: f32::MAX,
             ..WindSource::sphere(3.0, Vec3::X)
         },
-        WindSource::try_sphere(3.0, Vec3::X * f32::MAX).expect("finite"),
+        WindSource::sphere(3.0, Vec3::X * f32::MAX),
     ];
     for bad in huge {
         for (v, lone) in beside(Some(bad)).iter().zip(&alone) {
@@ -112,7 +112,7 @@ fn two_huge_sources_sum_to_a_finite_wind() {
     let mut app = still_app();
     for _ in 0..2 {
         app.world_mut().spawn((
-            WindSource::try_sphere(3.0, Vec3::X * f32::MAX).unwrap(),
+            WindSource::sphere(3.0, Vec3::X * f32::MAX),
             Transform::from_xyz(0.0, 2.0, 0.0),
         ));
     }
@@ -163,51 +163,34 @@ fn a_blast_never_blows_inward() {
 }
 
 #[test]
-fn sizes_beyond_the_world_are_refused_or_held() {
+fn sizes_beyond_the_world_are_refused_by_name() {
     let far = 2.4e38;
-    assert_eq!(
-        WindSource::try_gust(1.0, 1.0, 1.0, far)
-            .unwrap_err()
-            .field(),
-        "range"
-    );
-    assert_eq!(
-        WindSource::try_gust(1.0, 1.0, far, 1.0)
-            .unwrap_err()
-            .field(),
-        "width"
-    );
-    assert_eq!(
-        WindSource::try_sphere(1e8, Vec3::X).unwrap_err().field(),
-        "radius"
-    );
-    assert_eq!(
-        WindSource::try_fan(f32::MAX, 0.5, 1.0).unwrap_err().field(),
-        "range"
-    );
-    assert_eq!(
-        WindSource::try_vortex(1e30, 1.0).unwrap_err().field(),
-        "radius"
-    );
-    assert_eq!(
-        WindSource::try_blast(1.0, 1.0, 1e30).unwrap_err().field(),
-        "radius"
-    );
-    // The plain constructors hold a size at the world's edge: every reach is finite.
-    for source in [
-        WindSource::gust(1.0, 1.0, far, far),
-        WindSource::sphere(f32::MAX, Vec3::X),
-        WindSource::fan(f32::MAX, 0.5, 1.0),
-        WindSource::vortex(f32::MAX, 1.0),
-        WindSource::blast(1.0, 1.0, f32::MAX),
-    ] {
-        let reach = source.reach();
-        assert!(reach.is_finite() && reach > 0.0, "{source:?}: {reach}");
-    }
-    // And a source of the largest size still blows where it should.
+    let field = |s: WindSource| s.validate().unwrap_err().field();
+    assert_eq!(field(WindSource::gust(1.0, 1.0, 1.0, far)), "shape.range");
+    assert_eq!(field(WindSource::gust(1.0, 1.0, far, 1.0)), "shape.width");
+    assert_eq!(field(WindSource::sphere(1e8, Vec3::X)), "shape.radius");
+    assert_eq!(field(WindSource::fan(f32::MAX, 0.5, 1.0)), "shape.range");
+    assert_eq!(field(WindSource::vortex(1e30, 1.0)), "shape.radius");
+    assert_eq!(field(WindSource::blast(1.0, 1.0, 1e30)), "shape.radius");
+    // Spawned, such a source blows nothing and is marked; one at the world's edge blows.
+    let mut app = still_app();
+    let refused = app
+        .world_mut()
+        .spawn((
+            WindSource::sphere(f32::MAX, Vec3::X * 3.0),
+            Transform::from_xyz(0.0, 2.0, 0.0),
+        ))
+        .id();
+    app.update();
+    assert_eq!(wind(&app, Vec3::new(1.0, 2.0, 0.0)), Vec3::ZERO);
+    let marker = app
+        .world()
+        .get::<WindSourceInvalid>(refused)
+        .expect("marked");
+    assert_eq!(marker.0.field(), "shape.radius");
     let mut app = still_app();
     app.world_mut().spawn((
-        WindSource::sphere(f32::MAX, Vec3::X * 3.0),
+        WindSource::sphere(bevy_windfall::MAX_COORDINATE, Vec3::X * 3.0),
         Transform::from_xyz(0.0, 2.0, 0.0),
     ));
     app.update();

@@ -114,19 +114,12 @@ fn no_global_wind_indoors_but_a_fan_still_blows() {
 
 #[test]
 fn shelters_refuse_bad_sizes_as_sources_do() {
-    // The `try_` constructors name the first bad side; the plain ones hold it (0 for a negative
-    // or non-finite side, MAX_COORDINATE for a finite huge one), as the sources' do.
+    // One constructor per kind keeps what it is given; `validate` names the first bad side.
     let good = Vec3::new(0.1, 1.0, 5.0);
-    assert_eq!(
-        WindShelter::try_wall(good).unwrap(),
-        WindShelter::wall(good)
-    );
-    assert_eq!(
-        WindShelter::try_indoor(good).unwrap(),
-        WindShelter::indoor(good)
-    );
+    assert!(WindShelter::wall(good).validate().is_ok());
+    assert!(WindShelter::indoor(good).validate().is_ok());
     assert!(
-        WindShelter::try_wall(Vec3::ZERO).is_ok(),
+        WindShelter::wall(Vec3::ZERO).validate().is_ok(),
         "a zero box is a valid nothing"
     );
     for (bad, field) in [
@@ -136,17 +129,14 @@ fn shelters_refuse_bad_sizes_as_sources_do() {
         (Vec3::new(1.0, 1.0, 1e30), "half_extents.z"),
         (Vec3::new(1.0, -0.5, f32::NAN), "half_extents.y"),
     ] {
-        for result in [WindShelter::try_wall(bad), WindShelter::try_indoor(bad)] {
-            let error = result.expect_err("refused");
+        for shelter in [WindShelter::wall(bad), WindShelter::indoor(bad)] {
+            let error = shelter.validate().expect_err("refused");
             assert_eq!(error.field(), field, "{bad}: {error}");
         }
-        let held = WindShelter::wall(bad);
-        assert!(
-            held.validate().is_ok(),
-            "{bad}: the plain one holds it: {held:?}"
-        );
     }
     // A source's size is checked by the same rule.
-    let error = WindSource::try_sphere(-1.0, Vec3::X).expect_err("refused");
-    assert_eq!(error.field(), "radius");
+    let error = WindSource::sphere(1e30, Vec3::X)
+        .validate()
+        .expect_err("refused");
+    assert_eq!(error.field(), "shape.radius");
 }

@@ -9,10 +9,12 @@ use super::super::error::WindError;
 use super::{SourceShape, WindSource};
 use crate::error::InvalidValue;
 use crate::guard::MAX_COORDINATE;
+use std::f32::consts::FRAC_PI_2;
 
 impl WindSource {
-    /// Checks what a plugin would place: every number of the shape finite (sizes also ≥ 0), the
-    /// strength finite. What fails here blows nothing, and the entity gets a
+    /// Checks what a plugin would place: every number of the shape finite, sizes (and a blast's
+    /// speeds) within 0..=[`MAX_COORDINATE`], a fan's half angle within [0, π/2], the strength
+    /// finite. What fails here blows nothing, and the entity gets a
     /// [`WindSourceInvalid`] naming the field.
     ///
     /// # Errors
@@ -32,15 +34,7 @@ impl WindSource {
         match self.shape {
             SourceShape::Sphere { radius, velocity } => {
                 sized("shape.radius", radius)?;
-                let worst = velocity.abs().max_element();
-                finite(
-                    "shape.velocity",
-                    if velocity.is_finite() {
-                        worst
-                    } else {
-                        f32::NAN
-                    },
-                )?;
+                finite("shape.velocity", crate::guard::largest_component(velocity))?;
             }
             SourceShape::Fan {
                 range,
@@ -48,7 +42,12 @@ impl WindSource {
                 speed,
             } => {
                 sized("shape.range", range)?;
-                finite("shape.half_angle", half_angle)?;
+                InvalidValue::check(
+                    (0.0..=FRAC_PI_2).contains(&half_angle),
+                    "shape.half_angle",
+                    half_angle,
+                    "must be in [0, π/2]",
+                )?;
                 finite("shape.speed", speed)?;
             }
             SourceShape::Vortex {
@@ -65,7 +64,7 @@ impl WindSource {
                 front_speed,
                 radius,
             } => {
-                finite("shape.peak_speed", peak_speed)?;
+                sized("shape.peak_speed", peak_speed)?;
                 sized("shape.front_speed", front_speed)?;
                 sized("shape.radius", radius)?;
             }
@@ -86,8 +85,7 @@ impl WindSource {
 }
 
 /// Why a [`WindSource`] (or a [`WindShelter`](crate::wind::WindShelter)) adds nothing: a number
-/// of its shape that is not finite (a public field set by hand: the constructors never give
-/// one), or, with field `transform`, a transform that places it nowhere (not finite, or beyond
+/// of its shape that [`WindSource::validate`] refuses, or, with field `transform`, a transform that places it nowhere (not finite, or beyond
 /// ±[`MAX_COORDINATE`]). Inserted when the problem appears (logged once with `warn!`), removed
 /// once it is gone; the other sources and shelters blow as before.
 ///

@@ -11,12 +11,8 @@ use bevy::math::Vec3;
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::Transform;
-use std::f32::consts::FRAC_PI_2;
 
-use super::error::WindError;
-use super::local::{check_size, size};
 use super::pulse::Pulse;
-use crate::error::InvalidValue;
 
 /// What a [`WindSource`] blows, in metres and m/s.
 #[derive(Clone, Copy, Debug, PartialEq, Reflect)]
@@ -76,12 +72,12 @@ pub enum SourceShape {
 /// entity's position and rotation place it (its global transform, so sources move and may be
 /// parented); its scale is ignored: sizes are in metres.
 ///
-/// The plain constructors never fail: a non-finite number becomes 0, a negative size 0, a size
-/// beyond [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE) is held there and an angle is clamped to its range, so a bad
-/// argument gives a source that blows nothing rather than NaN. The `try_` constructors return a
-/// [`WindError`] naming the argument instead. A source whose public fields are set by hand to a
-/// number that is not finite blows nothing and gets a [`WindSourceInvalid`]; one source never
-/// cancels another (each adds at most ±1e6 m/s per axis), and a blast never blows inward.
+/// One constructor per shape, which keeps its arguments as given: a source a plugin cannot place
+/// (a number not finite, a size negative or beyond [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE),
+/// a fan's angle outside [0, π/2], a blast's speed negative) blows nothing and the entity gets a
+/// [`WindSourceInvalid`] naming the field (`shape.radius`, …); [`WindSource::validate`] says so
+/// beforehand. One source never cancels another (each adds at most ±1e6 m/s per axis), and a
+/// blast never blows inward.
 ///
 /// A blast or a gust is one-shot: it starts when it is added (its age counts from the start of
 /// the next fixed step, so after n steps it is n steps old) and is inert once
@@ -126,11 +122,6 @@ impl Default for WindSource {
     }
 }
 
-/// A finite value or 0.
-fn finite(v: f32) -> f32 {
-    if v.is_finite() { v } else { 0.0 }
-}
-
 impl WindSource {
     fn new(shape: SourceShape) -> Self {
         Self {
@@ -151,51 +142,19 @@ impl WindSource {
     /// `velocity` (world frame, m/s) at the centre, fading smoothly and monotonically to zero at
     /// `radius` (m): v(r) = velocity (1 − r²/R²)².
     pub fn sphere(radius: f32, velocity: Vec3) -> Self {
-        let velocity = if velocity.is_finite() {
-            velocity
-        } else {
-            Vec3::ZERO
-        };
-        Self::new(SourceShape::Sphere {
-            radius: size(radius),
-            velocity,
-        })
-    }
-
-    /// [`Self::sphere`], refusing a `radius` that is negative, not finite or above
-    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), or a non-finite `velocity`.
-    pub fn try_sphere(radius: f32, velocity: Vec3) -> Result<Self, WindError> {
-        check_size("radius", radius)?;
-        let largest = crate::guard::largest_component(velocity);
-        InvalidValue::check(largest.is_finite(), "velocity", largest, "must be finite")?;
-        Ok(Self::sphere(radius, velocity))
+        Self::new(SourceShape::Sphere { radius, velocity })
     }
 
     /// A jet along the entity's forward direction ([`Transform::forward`], local −Z): inside a
-    /// cone of `half_angle` rad (clamped to [0, π/2]), up to `range` m, blowing outward from the
+    /// cone of `half_angle` rad (in [0, π/2]), up to `range` m, blowing outward from the
     /// fan at `speed` m/s on the axis, fading to zero at the cone's edge and at `range`. Nothing
     /// behind the fan or outside the cone.
     pub fn fan(range: f32, half_angle: f32, speed: f32) -> Self {
         Self::new(SourceShape::Fan {
-            range: size(range),
-            half_angle: size(half_angle).min(FRAC_PI_2),
-            speed: finite(speed),
-        })
-    }
-
-    /// [`Self::fan`], refusing a `range` that is negative, not finite or above
-    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), a `half_angle` outside
-    /// [0, π/2] or a non-finite `speed`.
-    pub fn try_fan(range: f32, half_angle: f32, speed: f32) -> Result<Self, WindError> {
-        check_size("range", range)?;
-        InvalidValue::check(
-            (0.0..=FRAC_PI_2).contains(&half_angle) && half_angle.is_finite(),
-            "half_angle",
+            range,
             half_angle,
-            "must be in [0, π/2]",
-        )?;
-        InvalidValue::check(speed.is_finite(), "speed", speed, "must be finite")?;
-        Ok(Self::fan(range, half_angle, speed))
+            speed,
+        })
     }
 
     /// A horizontal swirl about the entity's local +Y axis, right-handed (at local +X the wind
@@ -205,30 +164,17 @@ impl WindSource {
     /// the whirl is a ball, flat within radius / 2 of the centre's height).
     pub fn vortex(radius: f32, peak_speed: f32) -> Self {
         Self::new(SourceShape::Vortex {
-            radius: size(radius),
-            peak_speed: finite(peak_speed),
+            radius,
+            peak_speed,
             updraft: 0.0,
         })
-    }
-
-    /// [`Self::vortex`], refusing a `radius` that is negative, not finite or above
-    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE), or a non-finite `peak_speed`.
-    pub fn try_vortex(radius: f32, peak_speed: f32) -> Result<Self, WindError> {
-        check_size("radius", radius)?;
-        InvalidValue::check(
-            peak_speed.is_finite(),
-            "peak_speed",
-            peak_speed,
-            "must be finite",
-        )?;
-        Ok(Self::vortex(radius, peak_speed))
     }
 
     /// A vortex that also lifts: `updraft` m/s upward on its axis, fading outward like the swirl
     /// (a dust devil). Ignored by other shapes.
     pub fn with_updraft(mut self, updraft: f32) -> Self {
         if let SourceShape::Vortex { updraft: u, .. } = &mut self.shape {
-            *u = finite(updraft);
+            *u = updraft;
         }
         self
     }
@@ -240,9 +186,9 @@ impl WindSource {
     /// has passed `radius` m.
     pub fn blast(peak_speed: f32, front_speed: f32, radius: f32) -> Self {
         Self::new(SourceShape::Blast {
-            peak_speed: size(peak_speed),
-            front_speed: size(front_speed),
-            radius: size(radius),
+            peak_speed,
+            front_speed,
+            radius,
         })
     }
 
@@ -254,52 +200,11 @@ impl WindSource {
     /// and then inert.
     pub fn gust(strength: f32, front_speed: f32, width: f32, range: f32) -> Self {
         Self::new(SourceShape::Gust {
-            strength: finite(strength),
-            front_speed: size(front_speed),
-            width: size(width),
-            range: size(range),
+            strength,
+            front_speed,
+            width,
+            range,
         })
-    }
-
-    /// [`Self::gust`], refusing a non-finite `strength`, a negative or non-finite
-    /// `front_speed`, or sizes that are negative, not finite or above [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE).
-    pub fn try_gust(
-        strength: f32,
-        front_speed: f32,
-        width: f32,
-        range: f32,
-    ) -> Result<Self, WindError> {
-        let reason = "must be finite and ≥ 0";
-        InvalidValue::check(strength.is_finite(), "strength", strength, "must be finite")?;
-        InvalidValue::check(
-            front_speed >= 0.0 && front_speed.is_finite(),
-            "front_speed",
-            front_speed,
-            reason,
-        )?;
-        check_size("width", width)?;
-        check_size("range", range)?;
-        Ok(Self::gust(strength, front_speed, width, range))
-    }
-
-    /// [`Self::blast`], refusing negative or non-finite arguments and a `radius` above
-    /// [`MAX_COORDINATE`](crate::guard::MAX_COORDINATE).
-    pub fn try_blast(peak_speed: f32, front_speed: f32, radius: f32) -> Result<Self, WindError> {
-        let reason = "must be finite and ≥ 0";
-        InvalidValue::check(
-            peak_speed >= 0.0 && peak_speed.is_finite(),
-            "peak_speed",
-            peak_speed,
-            reason,
-        )?;
-        InvalidValue::check(
-            front_speed >= 0.0 && front_speed.is_finite(),
-            "front_speed",
-            front_speed,
-            reason,
-        )?;
-        check_size("radius", radius)?;
-        Ok(Self::blast(peak_speed, front_speed, radius))
     }
 
     /// How far from its origin the source can blow, m (0: nowhere).

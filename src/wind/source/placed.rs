@@ -5,7 +5,7 @@ use bevy::math::{Quat, Vec3, Vec3A};
 
 use super::super::local::{Placement, fade};
 use super::super::pulse::Pulse;
-use super::{SourceShape, WindSource, finite};
+use super::{SourceShape, WindSource};
 use crate::math::geometry::{Q, V3};
 use crate::math::kernels::acos;
 
@@ -60,7 +60,11 @@ impl PlacedSource {
     /// guard on what a source adds.
     pub(crate) fn new(source: &WindSource, place: &Placement, start: f64) -> Option<Self> {
         let reach = source.reach();
-        let strength = finite(source.strength);
+        let strength = if source.strength.is_finite() {
+            source.strength
+        } else {
+            0.0
+        };
         if !(reach > 0.0 && reach.is_finite() && strength != 0.0) {
             return None;
         }
