@@ -279,7 +279,7 @@ fn step(c: &mut Criterion) {
         let mut app = baseline_app_with(0, |app| {
             app.insert_resource(Time::<Fixed>::from_seconds(f64::from(DT)))
                 .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-                .add_plugins(bevy_windfall::WindfallPlugins);
+                .add_plugins(bevy_windfall::WindfallPlugins::default());
         });
         b.iter(|| app.update())
     });

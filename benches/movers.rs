@@ -35,7 +35,7 @@ fn walk(time: Res<Time<Fixed>>, mut walkers: Query<(&Walker, &mut Transform)>) {
 /// The app: `cloud` leaves or none, 100 walkers about `at`, each a `WindMover` if `movers`.
 fn app(cloud: bool, at: Vec3, movers: bool) -> App {
     let mut app = App::new();
-    app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins))
+    app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()))
         .insert_resource(Time::<Fixed>::from_hz(60.0))
         .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
         .add_systems(FixedUpdate, walk.before(WindfallSystems::Wind));

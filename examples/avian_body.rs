@@ -22,7 +22,7 @@ fn main() {
         // With the `avian` feature, the group adds `AvianAeroPlugin` in avian's schedule.
         .add_plugins((
             PhysicsPlugins::default(),
-            WindfallPlugins.set(WindPlugin::new(wind)),
+            WindfallPlugins::default().set(WindPlugin::new(wind)),
         ))
         .add_plugins(common::ScreenshotPlugin)
         .insert_resource(ClearColor(Color::srgb(0.62, 0.76, 0.90)))

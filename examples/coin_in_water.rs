@@ -20,7 +20,7 @@ fn main() {
     App::new()
         .add_plugins(DefaultPlugins)
         // Still water: no wind.
-        .add_plugins(WindfallPlugins.set(WindPlugin::new(WindConfig {
+        .add_plugins(WindfallPlugins::default().set(WindPlugin::new(WindConfig {
             reference_speed: 0.0,
             ..default()
         })))

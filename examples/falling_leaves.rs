@@ -26,7 +26,7 @@ fn main() {
     };
     App::new()
         .add_plugins(DefaultPlugins)
-        .add_plugins(WindfallPlugins.set(WindPlugin::new(breeze)))
+        .add_plugins(WindfallPlugins::default().set(WindPlugin::new(breeze)))
         .add_plugins(common::ScreenshotPlugin)
         .add_systems(Startup, setup)
         .add_systems(Update, let_leaves_go)

@@ -14,7 +14,7 @@ use bevy_windfall::prelude::*;
 fn main() {
     App::new()
         .add_plugins(DefaultPlugins)
-        .add_plugins((WindfallPlugins, WindfallInspectorPlugin))
+        .add_plugins((WindfallPlugins::default(), WindfallInspectorPlugin))
         .add_plugins(common::ScreenshotPlugin)
         .insert_resource(ClearColor(Color::srgb(0.62, 0.76, 0.90)))
         .add_systems(Startup, setup)

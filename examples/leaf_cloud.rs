@@ -18,7 +18,7 @@ fn main() {
     };
     App::new()
         .add_plugins(DefaultPlugins)
-        .add_plugins(WindfallPlugins.set(WindPlugin::new(wind)))
+        .add_plugins(WindfallPlugins::default().set(WindPlugin::new(wind)))
         .add_plugins(common::ScreenshotPlugin)
         .add_systems(Startup, setup)
         .add_systems(Update, (circle_the_cloud, show_detail))

@@ -16,7 +16,7 @@ use bevy_windfall::prelude::*;
 fn main() {
     App::new()
         .add_plugins(DefaultPlugins)
-        .add_plugins(WindfallPlugins.set(WindPlugin::new(WindConfig {
+        .add_plugins(WindfallPlugins::default().set(WindPlugin::new(WindConfig {
             reference_speed: 3.0,
             ..default()
         })))

@@ -18,7 +18,7 @@ fn main() {
     };
     App::new()
         .add_plugins(DefaultPlugins)
-        .add_plugins(WindfallPlugins.set(WindPlugin::new(breeze)))
+        .add_plugins(WindfallPlugins::default().set(WindPlugin::new(breeze)))
         .add_plugins(common::ScreenshotPlugin)
         .insert_resource(ClearColor(Color::srgb(0.62, 0.76, 0.90)))
         .add_systems(Startup, setup)

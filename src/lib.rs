@@ -25,7 +25,7 @@
 //!
 //! # Getting started
 //!
-//! Add [`WindfallPlugins`](struct@WindfallPlugins) after `DefaultPlugins` and spawn what the
+//! Add [`WindfallPlugins`] after `DefaultPlugins` and spawn what the
 //! wind should move; everything is positioned by its
 //! [`Transform`](bevy::transform::components::Transform) and, with the default feature `render`,
 //! drawn with a default look (a leaf its preset's outline and colours, a cloth a fabric) unless
@@ -36,7 +36,7 @@
 //! use bevy_windfall::prelude::*;
 //!
 //! App::new()
-//!     .add_plugins((DefaultPlugins, WindfallPlugins))
+//!     .add_plugins((DefaultPlugins, WindfallPlugins::default()))
 //!     .add_systems(Startup, |mut commands: Commands| {
 //!         commands.spawn((Camera3d::default(), Transform::from_xyz(0.0, 2.0, 8.0)));
 //!         commands.spawn((DirectionalLight::default(), Transform::from_xyz(2.0, 8.0, 6.0)));
@@ -55,7 +55,7 @@
 //! use bevy_windfall::prelude::*;
 //!
 //! let mut app = App::new();
-//! app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+//! app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 //! // A maple leaf let go from a branch and a flag on a pole, 5 m/s of wind at 10 m.
 //! app.world_mut().resource_mut::<WindSettings>().reference_speed = 5.0;
 //! let leaf = app
@@ -73,7 +73,7 @@
 //! ```
 //!
 //! Every plugin is opt-in: add the group, a single plugin, or
-//! `WindfallPlugins.build().disable::<ClothPlugin>()`. The repository's examples each show one
+//! `WindfallPlugins::default().build().disable::<ClothPlugin>()`. The repository's examples each show one
 //! topic (`cargo run --example falling_leaves`, `flag`, `leaf_cloud`, …); the showcase tours them
 //! all (`cargo run --example showcase --features egui`).
 //!
@@ -153,13 +153,13 @@
 //! fn my_fan(wind: Res<WindField>) { /* sample the wind after its clock advanced */ }
 //!
 //! App::new()
-//!     .add_plugins((MinimalPlugins, WindfallPlugins))
+//!     .add_plugins((MinimalPlugins, WindfallPlugins::default()))
 //!     .add_systems(FixedUpdate, my_fan.in_set(WindfallSystems::Simulate));
 //!
 //! // Between two domains: after the leaves, before the cloth.
 //! fn between_leaves_and_cloth() {}
 //! App::new()
-//!     .add_plugins((MinimalPlugins, WindfallPlugins))
+//!     .add_plugins((MinimalPlugins, WindfallPlugins::default()))
 //!     .add_systems(
 //!         FixedUpdate,
 //!         between_leaves_and_cloth
@@ -228,7 +228,7 @@
 //!
 //! # FAQ
 //!
-//! **Nothing moves.** The part's plugin must be added (the group [`WindfallPlugins`](struct@WindfallPlugins) adds them
+//! **Nothing moves.** The part's plugin must be added (the group [`WindfallPlugins`] adds them
 //! all; a single plugin needs the `WindPlugin` too) and the entity needs a `Transform`. An
 //! entity whose numbers or transform are bad gets an `…Invalid` component naming the field
 //! ([`FallingObjectInvalid`](freefall::FallingObjectInvalid), `ClothInvalid`, …) and a warning

@@ -9,8 +9,8 @@ use bevy::ecs::schedule::{InternedScheduleLabel, ScheduleLabel};
 use crate::{aero, cloth, freefall, wind};
 
 /// All of bevy_windfall's plugins. Add the group after `DefaultPlugins`
-/// (`add_plugins(WindfallPlugins)`, the simulation in [`FixedUpdate`](bevy::app::FixedUpdate)),
-/// a single plugin, or disable one: `WindfallPlugins.build().disable::<ClothPlugin>()`. Simulate
+/// (`add_plugins(WindfallPlugins::default())`, the simulation in [`FixedUpdate`](bevy::app::FixedUpdate)),
+/// a single plugin, or disable one: `WindfallPlugins::default().build().disable::<ClothPlugin>()`. Simulate
 /// in another schedule with [`WindfallPlugins::new`], as avian's `PhysicsPlugins::new(schedule)`.
 ///
 /// With the features that bring them, the group also holds what draws and what couples:
@@ -22,14 +22,9 @@ use crate::{aero, cloth, freefall, wind};
 /// [`ClothPlugin`]: cloth::ClothPlugin
 #[derive(Clone, Copy, Debug, Default)]
 pub struct WindfallPlugins {
-    /// Where the simulation runs; `None` is `FixedUpdate` (so the group can be a `const`).
+    /// Where the simulation runs; `None` is `FixedUpdate`.
     schedule: Option<InternedScheduleLabel>,
 }
-
-/// The group in [`FixedUpdate`](bevy::app::FixedUpdate), as a value: `add_plugins(WindfallPlugins)`
-/// reads as it would for a unit struct (the same as `WindfallPlugins::default()`).
-#[allow(non_upper_case_globals)]
-pub const WindfallPlugins: WindfallPlugins = WindfallPlugins { schedule: None };
 
 impl WindfallPlugins {
     /// All the plugins, simulating (the [`WindfallSystems::Wind`](crate::WindfallSystems::Wind)

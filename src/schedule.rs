@@ -56,7 +56,7 @@ pub enum WindfallSystems {
 /// // Reads where the leaves are before the cloth moves.
 /// fn between(clouds: Query<&bevy_windfall::freefall::cloud::LeafCloudState>) { let _ = clouds; }
 ///
-/// App::new().add_plugins((MinimalPlugins, WindfallPlugins)).add_systems(
+/// App::new().add_plugins((MinimalPlugins, WindfallPlugins::default())).add_systems(
 ///     FixedUpdate,
 ///     between.after(SimulateSystems::Clouds).before(SimulateSystems::Cloth),
 /// );

@@ -35,7 +35,7 @@ pub fn fingerprint(threads: Option<usize>) -> u64 {
     app.add_plugins((
         MinimalPlugins.set(pools),
         TransformPlugin,
-        WindfallPlugins.set(WindPlugin::new(wind)),
+        WindfallPlugins::default().set(WindPlugin::new(wind)),
     ))
     .insert_resource(Time::<Fixed>::from_hz(60.0))
     .insert_resource(TimeUpdateStrategy::FixedTimesteps(1));

@@ -120,7 +120,7 @@ fn main() {
     let start = args
         .choice("--scene", &Scene::ALL.map(|scene| (scene.name(), scene)))
         .unwrap_or_default();
-    app.add_plugins(WindfallPlugins.set(WindPlugin::new(WindConfig {
+    app.add_plugins(WindfallPlugins::default().set(WindPlugin::new(WindConfig {
         reference_speed: 2.5,
         // Open grassland with a few trees: grass-high wind is not zero (the log law is 0 at z0).
         roughness: 0.05,

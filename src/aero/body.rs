@@ -28,7 +28,7 @@ use crate::wind::WindField;
 /// use bevy_windfall::prelude::*;
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// # use bevy::time::TimeUpdateStrategy;
 /// # app.insert_resource(TimeUpdateStrategy::ManualDuration(std::time::Duration::from_millis(17)));
 /// // A business card dropped from 3 m.
@@ -143,7 +143,7 @@ impl AeroState {
 /// use bevy_windfall::aero::AeroBodyInvalid;
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// let lost = app
 ///     .world_mut()
 ///     .spawn((AeroBody::default(), Transform::from_xyz(f32::NAN, 2.0, 0.0)))

@@ -33,7 +33,7 @@ use crate::wind::WindField;
 /// use bevy_windfall::aero::{PhysicalCloth, PhysicalClothState};
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// let flag = app
 ///     .world_mut()
 ///     .spawn((PhysicalCloth::default(), Transform::from_xyz(0.0, 5.0, 0.0)))
@@ -101,7 +101,7 @@ pub(super) struct PreviousPositions(Vec<Vec3>);
 /// use bevy_windfall::aero::{PhysicalCloth, PhysicalClothInvalid};
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// let weightless = PhysicalCloth { areal_density: 0.0, ..default() };
 /// let cloth = app.world_mut().spawn(weightless).id();
 /// app.update();

@@ -26,7 +26,7 @@ use crate::lod::LodTiers;
 /// use bevy_windfall::prelude::*;
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// // A 1.5 × 1 m flag on a pole whose top is 6 m up, in the wind of the field.
 /// let flag = app
 ///     .world_mut()
@@ -194,7 +194,7 @@ impl Detail {
 /// use bevy_windfall::cloth::ClothInvalid;
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// let bad = ClothGrid { columns: 1, ..default() };
 /// let cloth = app.world_mut().spawn(Cloth { grid: bad, ..default() }).id();
 /// app.update();

@@ -25,7 +25,7 @@ use crate::lod::LodTiers;
 /// use bevy_windfall::prelude::*;
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// let leaf = app
 ///     .world_mut()
 ///     .spawn((FallingObject::default(), Transform::from_xyz(0.0, 3.0, 0.0)))

@@ -43,7 +43,7 @@ use crate::lifecycle::Described;
 /// use bevy_windfall::prelude::*;
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// // A sheet of paper let go 2 m up, turned 30° about its long axis.
 /// let sheet = app
 ///     .world_mut()
@@ -272,7 +272,7 @@ impl FallState {
 /// use bevy_windfall::freefall::FallingObjectInvalid;
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// // Lighter than air: it cannot fall.
 /// let balloon = app
 ///     .world_mut()
@@ -302,7 +302,7 @@ crate::lifecycle::invalid_marker!(FallingObjectInvalid, FallError);
 ///     }
 /// }
 /// App::new()
-///     .add_plugins((MinimalPlugins, WindfallPlugins))
+///     .add_plugins((MinimalPlugins, WindfallPlugins::default()))
 ///     .add_systems(Update, rustle);
 /// ```
 #[derive(Message, Clone, Copy, Debug, PartialEq)]
@@ -325,7 +325,7 @@ pub struct Landed {
 ///
 /// // A table top 0.75 m up.
 /// App::new()
-///     .add_plugins((MinimalPlugins, WindfallPlugins))
+///     .add_plugins((MinimalPlugins, WindfallPlugins::default()))
 ///     .insert_resource(FallSettings { ground_height: 0.75 });
 /// ```
 #[derive(Resource, Clone, Debug, PartialEq, Default, Reflect)]

@@ -33,7 +33,7 @@ use crate::wind::{WindConfig, WindRebuild, WindSettings, WindShelter, WindSource
 /// use bevy_windfall::inspector::WindfallInspectorPlugin;
 ///
 /// App::new()
-///     .add_plugins((DefaultPlugins, WindfallPlugins, WindfallInspectorPlugin))
+///     .add_plugins((DefaultPlugins, WindfallPlugins::default(), WindfallInspectorPlugin))
 ///     .run();
 /// ```
 pub struct WindfallInspectorPlugin;

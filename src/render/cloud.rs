@@ -175,7 +175,7 @@ pub(crate) struct LeafCloudVisual {
 /// use bevy_windfall::prelude::*;
 ///
 /// App::new()
-///     .add_plugins((DefaultPlugins, WindfallPlugins))
+///     .add_plugins((DefaultPlugins, WindfallPlugins::default()))
 ///     .add_systems(Startup, |mut commands: Commands| {
 ///         commands.spawn((Camera3d::default(), LodFocus, Transform::from_xyz(0.0, 3.0, 20.0)));
 ///         commands.spawn(LeafCloud { count: 50_000, ..default() });

@@ -40,7 +40,7 @@ use crate::freefall::{FallPreset, FallingObject, Shape};
 /// use bevy_windfall::prelude::*;
 ///
 /// App::new()
-///     .add_plugins((DefaultPlugins, WindfallPlugins))
+///     .add_plugins((DefaultPlugins, WindfallPlugins::default()))
 ///     .add_systems(Startup, |mut commands: Commands| {
 ///         commands.spawn((Camera3d::default(), Transform::from_xyz(0.0, 2.0, 4.0)));
 ///         commands.spawn(DirectionalLight::default());

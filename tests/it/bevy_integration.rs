@@ -52,7 +52,7 @@ pub(crate) fn physical_flag() -> PhysicalCloth {
 
 fn full_app() -> App {
     let mut app = headless_app_with_meshes();
-    app.add_plugins(WindfallPlugins);
+    app.add_plugins(WindfallPlugins::default());
     ready(&mut app);
     app
 }
@@ -238,7 +238,7 @@ fn spawn_everything(mut commands: Commands, mut spawned: ResMut<Spawned>, mut on
 #[test]
 fn entities_spawned_in_a_frame_are_ready_in_that_frame() {
     let mut app = headless_app_with_meshes();
-    app.add_plugins(WindfallPlugins)
+    app.add_plugins(WindfallPlugins::default())
         .init_resource::<Spawned>()
         .add_systems(Update, spawn_everything);
     app.finish();
@@ -314,7 +314,7 @@ fn bodies_move_smoothly_at_144_hz_over_a_60_hz_step() {
     app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
         1.0 / 144.0,
     )))
-    .add_plugins(WindfallPlugins);
+    .add_plugins(WindfallPlugins::default());
     ready(&mut app);
     assert_eq!(app.world().resource::<Time<Fixed>>().timestep(), STEP);
     let leaf = app
@@ -367,7 +367,7 @@ fn bodies_move_smoothly_at_144_hz_over_a_60_hz_step() {
 /// fixed step (144 Hz frames) and in `Update`.
 #[test]
 fn a_paused_game_shows_every_body_where_it_was() {
-    paused_frames_show_the_last_poses(WindfallPlugins);
+    paused_frames_show_the_last_poses(WindfallPlugins::default());
     paused_frames_show_the_last_poses(WindfallPlugins::new(Update));
 }
 
@@ -664,7 +664,7 @@ fn a_hitch_costs_a_physical_cloth_three_frames_of_work() {
     };
     let run = |frames: u32, steps_per_frame: u32| {
         let mut app = headless_app_with_meshes();
-        app.add_plugins(WindfallPlugins.set(WindPlugin::new(steady.clone())));
+        app.add_plugins(WindfallPlugins::default().set(WindPlugin::new(steady.clone())));
         let cloth = app
             .world_mut()
             .spawn((physical_flag(), Transform::from_xyz(0.0, 3.0, 0.0)))

@@ -119,7 +119,7 @@ fn one_fall(
         },
         ..default()
     };
-    app.add_plugins(WindfallPlugins.set(WindPlugin::new(wind)));
+    app.add_plugins(WindfallPlugins::default().set(WindPlugin::new(wind)));
     app.world_mut().spawn((
         WindSource::fan(12.0, 0.7, 14.0),
         Transform::from_xyz(-6.0, 6.0, 0.0).looking_at(Vec3::new(0.0, 6.0, 0.0), Vec3::Y),

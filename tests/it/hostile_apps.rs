@@ -31,7 +31,7 @@ enum Kind {
 #[test]
 fn apps_with_hostile_transforms_report_once_and_recover() {
     let mut app = headless_app_with_meshes();
-    app.add_plugins(WindfallPlugins);
+    app.add_plugins(WindfallPlugins::default());
     ready(&mut app);
     let transforms = [
         ("nan translation", Transform::from_xyz(f32::NAN, 2.0, 0.0)),
@@ -159,7 +159,7 @@ fn apps_with_hostile_transforms_report_once_and_recover() {
 #[test]
 fn removing_resources_mid_run_is_survivable() {
     let mut app = headless_app_with_meshes();
-    app.add_plugins(WindfallPlugins);
+    app.add_plugins(WindfallPlugins::default());
     ready(&mut app);
     let coin = app
         .world_mut()

@@ -20,7 +20,7 @@ use proptest::prelude::*;
 
 fn app() -> App {
     let mut app = headless_app_with_meshes();
-    app.add_plugins(WindfallPlugins);
+    app.add_plugins(WindfallPlugins::default());
     ready(&mut app);
     app
 }
@@ -434,7 +434,7 @@ type Slot = (Entity, Option<(usize, bool)>);
 fn run_sequence(schedule: usize, ops: &[(usize, Op)]) {
     let mut app = headless_app_with_meshes();
     match schedule {
-        0 => app.add_plugins(WindfallPlugins),
+        0 => app.add_plugins(WindfallPlugins::default()),
         1 => app.add_plugins(WindfallPlugins::new(Update)),
         _ => app.add_plugins(WindfallPlugins::new(PostUpdate)),
     };

@@ -37,7 +37,7 @@ fn run(shuffle_seed: Option<u64>) -> Run {
         },
         ..default()
     };
-    app.add_plugins(WindfallPlugins.set(WindPlugin::new(wind)));
+    app.add_plugins(WindfallPlugins::default().set(WindPlugin::new(wind)));
     let world = app.world_mut();
     for i in 0..40u32 {
         let preset = [
@@ -194,7 +194,8 @@ fn cloth_nodes(world: &mut World) -> Vec<Vec3> {
 fn a_system_runs_between_the_leaves_and_the_cloth() {
     for shuffle in [None, Some(1), Some(2), Some(3)] {
         let mut app = headless_app_with_meshes();
-        app.add_plugins(WindfallPlugins).init_resource::<Seen>();
+        app.add_plugins(WindfallPlugins::default())
+            .init_resource::<Seen>();
         let world = app.world_mut();
         world.spawn(LeafCloud {
             count: 50,

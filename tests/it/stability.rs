@@ -366,7 +366,7 @@ proptest! {
         app.add_plugins((MinimalPlugins, TransformPlugin))
             .insert_resource(Time::<Fixed>::from_seconds(f64::from(step)))
             .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-            .add_plugins(WindfallPlugins.set(WindPlugin::new(WindConfig {
+            .add_plugins(WindfallPlugins::default().set(WindPlugin::new(WindConfig {
                 reference_speed: speed, beta, grid: [16, 16], seed, ..default()
             })));
         let shape = Shape::Disk { diameter: size, thickness: size * 0.05 };

@@ -280,7 +280,7 @@ fn standing_still_on_its_first_step_and_after_a_teleport_it_makes_no_wind() {
 /// above them, `beside` m to the side of the row. Returns for each leaf whether it left the
 /// ground.
 fn leaves_after_a_pass(speed: f32, beside: f32) -> Vec<bool> {
-    let mut app = app_with(WindfallPlugins.set(WindPlugin::new(still())));
+    let mut app = app_with(WindfallPlugins::default().set(WindPlugin::new(still())));
     let leaves: Vec<Entity> = (0..12)
         .map(|i| {
             let leaf = FallingObject {
@@ -333,7 +333,7 @@ fn a_running_body_lifts_the_leaves_on_its_path_and_none_beside_it() {
 
 #[test]
 fn a_cart_through_a_cloud_of_resting_leaves_lifts_those_on_its_path() {
-    let mut app = app_with(WindfallPlugins.set(WindPlugin::new(still())));
+    let mut app = app_with(WindfallPlugins::default().set(WindPlugin::new(still())));
     let cloud = app
         .world_mut()
         .spawn(LeafCloud {

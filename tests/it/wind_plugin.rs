@@ -44,12 +44,12 @@ fn plugin_advances_wind_time_on_the_fixed_step_and_can_pause_or_scale() {
 #[test]
 fn plugins_are_opt_in() {
     let mut app = headless_app();
-    app.add_plugins(WindfallPlugins.build().disable::<WindPlugin>());
+    app.add_plugins(WindfallPlugins::default().build().disable::<WindPlugin>());
     ready(&mut app);
     assert!(!app.world().contains_resource::<WindField>());
 
     let mut app = headless_app();
-    app.add_plugins(WindfallPlugins);
+    app.add_plugins(WindfallPlugins::default());
     ready(&mut app);
     assert_eq!(
         app.world().resource::<WindField>().config(),

@@ -350,7 +350,7 @@ fn every_consumer_feels_a_source() {
     // Each consumer twice, in still air: once inside a sphere blowing 6 m/s along +X, once
     // outside it; inside, it must move (or flap) downwind.
     let mut app = headless_app_with_meshes();
-    app.add_plugins(WindfallPlugins.set(WindPlugin::new(still())));
+    app.add_plugins(WindfallPlugins::default().set(WindPlugin::new(still())));
     ready(&mut app);
     let blow = Vec3::X * 6.0;
     let world = app.world_mut();
@@ -431,7 +431,7 @@ fn every_consumer_feels_a_source() {
 fn a_strong_enough_wind_lifts_resting_objects_again() {
     use bevy_windfall::freefall::FallState;
     let mut app = headless_app();
-    app.add_plugins(WindfallPlugins.set(WindPlugin::new(still())));
+    app.add_plugins(WindfallPlugins::default().set(WindPlugin::new(still())));
     ready(&mut app);
     // Leaves dropped from 5 cm: they come to rest on the ground (height 0).
     let leaves: Vec<Entity> = (0..6)
@@ -489,7 +489,7 @@ fn a_strong_enough_wind_lifts_resting_objects_again() {
 #[test]
 fn a_blast_sweeps_leaves_off_the_ground_but_not_a_coin() {
     let mut app = headless_app();
-    app.add_plugins(WindfallPlugins.set(WindPlugin::new(still())));
+    app.add_plugins(WindfallPlugins::default().set(WindPlugin::new(still())));
     ready(&mut app);
     let coin = FallingObject {
         fluid: bevy_windfall::freefall::Fluid::AIR,

@@ -90,7 +90,7 @@ impl Default for CloudRegion {
 /// use bevy_windfall::prelude::*;
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// let storm = app
 ///     .world_mut()
 ///     .spawn(LeafCloud {

@@ -44,7 +44,7 @@ use regime::PrimitiveMotion;
 /// let dwell = [3.0, 3.0, 3.0, 3.0, 3.0, f32::INFINITY];
 /// let calm = MarkovChain::from_dwell_times([1.0; 6], dwell, next).unwrap();
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, WindfallPlugins::default()));
 /// app.world_mut().resource_mut::<FallModel>().set_chain(calm);
 /// ```
 #[derive(Resource, Clone, Debug, Reflect)]

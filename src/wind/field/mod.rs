@@ -45,7 +45,7 @@ use crate::spectrum::{GridShape, SpectrumError, Synthesizer};
 ///     }
 /// }
 /// App::new()
-///     .add_plugins((MinimalPlugins, WindfallPlugins))
+///     .add_plugins((MinimalPlugins, WindfallPlugins::default()))
 ///     .add_systems(FixedUpdate, drift.in_set(WindfallSystems::Simulate));
 /// ```
 #[derive(Resource, Clone, Debug, Reflect)]

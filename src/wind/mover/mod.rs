@@ -63,7 +63,7 @@ pub(crate) use track::{MoverTrail, anything_moving, place_wind_movers};
 ///     commands.spawn((Player, WindMover { radius: 0.5, ..default() }, Transform::from_xyz(0.0, 0.6, 0.0)));
 /// }
 /// App::new()
-///     .add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins))
+///     .add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()))
 ///     .add_systems(Startup, setup)
 ///     .update();
 /// ```

@@ -97,7 +97,7 @@ impl WindSource {
 /// use bevy_windfall::wind::{SourceShape, WindSourceInvalid};
 ///
 /// let mut app = App::new();
-/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins));
+/// app.add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()));
 /// let shape = SourceShape::Fan { range: 5.0, half_angle: 0.5, speed: f32::NAN };
 /// let fan = app.world_mut().spawn(WindSource { shape, ..default() }).id();
 /// app.update();

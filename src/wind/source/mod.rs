@@ -98,7 +98,7 @@ pub enum SourceShape {
 ///     commands.spawn((WindSource::blast(25.0, 15.0, 12.0), Transform::from_xyz(3.0, 0.2, 0.0)));
 /// }
 /// App::new()
-///     .add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins))
+///     .add_plugins((MinimalPlugins, TransformPlugin, WindfallPlugins::default()))
 ///     .add_systems(Startup, setup)
 ///     .update();
 /// ```
