@@ -42,6 +42,16 @@ impl PartialEq for InvalidValue {
 }
 
 impl InvalidValue {
+    /// The error naming `field`, its `value` and what it must be: the one way every domain's
+    /// error is made (each domain's error converts from it with `?` or `.into()`).
+    pub(crate) fn new(field: &'static str, value: f32, reason: &'static str) -> Self {
+        Self {
+            field,
+            value,
+            reason,
+        }
+    }
+
     /// `Ok` when `ok`, otherwise the error naming `field`.
     pub(crate) fn check(
         ok: bool,
@@ -52,11 +62,7 @@ impl InvalidValue {
         if ok {
             Ok(())
         } else {
-            Err(Self {
-                field,
-                value,
-                reason,
-            })
+            Err(Self::new(field, value, reason))
         }
     }
 }

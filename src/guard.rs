@@ -107,11 +107,11 @@ pub(crate) fn check_affine(
 ) -> Result<(), crate::error::InvalidValue> {
     match bad_affine(affine) {
         None => Ok(()),
-        Some(value) => Err(crate::error::InvalidValue {
-            field: "transform",
+        Some(value) => Err(crate::error::InvalidValue::new(
+            "transform",
             value,
-            reason: TRANSFORM_REASON,
-        }),
+            TRANSFORM_REASON,
+        )),
     }
 }
 

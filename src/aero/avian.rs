@@ -63,11 +63,8 @@ impl AvianAero {
     /// two-sided: build from one side of a double-sided mesh, or the area counts twice.
     pub fn from_mesh(mesh: &Mesh, coefficients: AeroCoefficients) -> Result<Self, AeroError> {
         coefficients.validate()?;
-        let no_positions = AeroError::Invalid(InvalidValue {
-            field: "mesh",
-            value: 0.0,
-            reason: "needs Float32x3 positions",
-        });
+        let no_positions =
+            AeroError::from(InvalidValue::new("mesh", 0.0, "needs Float32x3 positions"));
         let Some(VertexAttributeValues::Float32x3(positions)) =
             mesh.attribute(Mesh::ATTRIBUTE_POSITION)
         else {

@@ -163,13 +163,12 @@ impl AeroBody {
     /// Checks what a step needs: `gravity` and the state the body is in (or starts from).
     fn check(&self, state: &PlateState) -> Result<(), AeroError> {
         let g = crate::guard::largest_component(self.gravity);
-        if g.is_nan() || g.abs() > MAX_GRAVITY {
-            return Err(AeroError::Invalid(InvalidValue {
-                field: "gravity",
-                value: g,
-                reason: "must be finite and within ±1e4 m/s²",
-            }));
-        }
+        InvalidValue::check(
+            g.abs() <= MAX_GRAVITY,
+            "gravity",
+            g,
+            "must be finite and within ±1e4 m/s²",
+        )?;
         state.validate()
     }
 }

@@ -28,13 +28,8 @@ impl NoiseSheet {
             dims.push(frames);
         }
         dims.extend([rows.max(2), columns.max(2)]);
-        let mut values = try_fbm(&dims, beta, seed).map_err(|_| {
-            ClothError::Invalid(InvalidValue {
-                field: "beta",
-                value: beta,
-                reason: "must be finite and ≥ 0",
-            })
-        })?;
+        let mut values = try_fbm(&dims, beta, seed)
+            .map_err(|_| InvalidValue::new("beta", beta, "must be finite and ≥ 0"))?;
         // Scale into [−1, 1]: the angles then span exactly the amplitude range [−θ, θ].
         let peak = values.iter().fold(0.0f32, |m, v| m.max(v.abs()));
         if peak > 0.0 {

@@ -156,15 +156,12 @@ fn finite(
     ok: bool,
     reason: &'static str,
 ) -> Result<(), ClothError> {
-    if value.is_finite() && ok {
-        Ok(())
-    } else {
-        Err(ClothError::Invalid(InvalidValue {
-            field,
-            value,
-            reason,
-        }))
-    }
+    Ok(InvalidValue::check(
+        value.is_finite() && ok,
+        field,
+        value,
+        reason,
+    )?)
 }
 
 impl ClothGrid {

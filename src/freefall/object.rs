@@ -115,20 +115,18 @@ impl Default for FallingObject {
 impl FallingObject {
     /// Re, I*, U and the main motion (the phase diagram's, or [`FallingObject::main_motion`]).
     pub fn regime(&self) -> Result<Regime, FallError> {
-        if !(self.deviation.is_finite() && (0.0..=100.0).contains(&self.deviation)) {
-            return Err(FallError::Invalid(InvalidValue {
-                field: "deviation",
-                value: self.deviation,
-                reason: "must be in [0, 100]",
-            }));
-        }
-        if !(self.wind_tilt.is_finite() && self.wind_tilt.abs() <= std::f32::consts::PI) {
-            return Err(FallError::Invalid(InvalidValue {
-                field: "wind_tilt",
-                value: self.wind_tilt,
-                reason: "must be an angle in [−π, π]",
-            }));
-        }
+        InvalidValue::check(
+            (0.0..=100.0).contains(&self.deviation),
+            "deviation",
+            self.deviation,
+            "must be in [0, 100]",
+        )?;
+        InvalidValue::check(
+            self.wind_tilt.abs() <= std::f32::consts::PI,
+            "wind_tilt",
+            self.wind_tilt,
+            "must be an angle in [−π, π]",
+        )?;
         let mut r = Regime::new(&self.shape, self.density, &self.fluid, self.gravity)?;
         if let Some(main) = self.main_motion {
             r.main = main;

@@ -43,12 +43,12 @@ const MAX_DEPTH: usize = 256;
 /// `transform`.
 pub(super) fn world_place(entity: Entity, hierarchy: &Hierarchy) -> Result<Placement, WindError> {
     let nowhere = |value| {
-        WindError::Invalid(InvalidValue {
-            field: "transform",
+        WindError::from(InvalidValue::new(
+            "transform",
             value,
-            reason: "must place it at a finite point within ±MAX_COORDINATE (1e7 m), turned by a \
-                     finite rotation",
-        })
+            "must place it at a finite point within ±MAX_COORDINATE (1e7 m), turned by a finite \
+             rotation",
+        ))
     };
     let (mut affine, mut rotation) = (Affine3A::IDENTITY, Quat::IDENTITY);
     let mut at = Some(entity);

@@ -16,7 +16,7 @@ pub use yarns::YarnSolves;
 
 use super::coefficients::AeroCoefficients;
 use super::error::AeroError;
-use crate::cloth::{ClothError, ClothGrid};
+use crate::cloth::ClothGrid;
 
 /// Which nodes hold still.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, bevy::reflect::Reflect)]
@@ -156,18 +156,7 @@ impl ParticleCloth {
         pinning: Pinning,
     ) -> Result<Self, AeroError> {
         // The grid's own error, field and all.
-        grid.validate().map_err(|e| match e {
-            ClothError::Invalid(invalid) => invalid,
-            ClothError::Count {
-                field,
-                value,
-                reason,
-            } => InvalidValue {
-                field,
-                value: value as f32,
-                reason,
-            },
-        })?;
+        grid.validate()?;
         InvalidValue::check(grid.rows >= 2, "grid.rows", grid.rows as f32, "must be ≥ 2")?;
         InvalidValue::check(grid.height > 0.0, "grid.height", grid.height, "must be > 0")?;
         InvalidValue::check(

@@ -125,13 +125,12 @@ impl RigidPlate {
         )?;
         // Checked on what the solver divides by: the mass, in f64.
         let mass = f64::from(density) * f64::from(length) * f64::from(width) * f64::from(thickness);
-        if mass < 1e-30 {
-            return Err(AeroError::Invalid(InvalidValue {
-                field: "density",
-                value: density,
-                reason: "the plate's mass (density × length × width × thickness) must be ≥ 1e-30 kg",
-            }));
-        }
+        InvalidValue::check(
+            mass >= 1e-30,
+            "density",
+            density,
+            "the plate's mass (density × length × width × thickness) must be ≥ 1e-30 kg",
+        )?;
         coefficients.validate()?;
         let cells = cells.clamp(1, 64);
         let area = length * width / (cells * cells) as f32;

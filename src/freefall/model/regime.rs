@@ -154,11 +154,7 @@ pub struct Regime {
 }
 
 fn invalid(field: &'static str, value: f32, reason: &'static str) -> FallError {
-    FallError::Invalid(InvalidValue {
-        field,
-        value,
-        reason,
-    })
+    InvalidValue::new(field, value, reason).into()
 }
 
 fn positive(field: &'static str, value: f32, max: f32) -> Result<(), FallError> {

@@ -99,13 +99,10 @@ pub(crate) fn check_ground(ground: f32, endless: bool) -> Result<(), FallError> 
     if within || (endless && ground == f32::NEG_INFINITY) {
         return Ok(());
     }
-    Err(FallError::Invalid(InvalidValue {
-        field: "release.ground",
-        value: ground,
-        reason: if endless {
-            crate::guard::GROUND_REASON
-        } else {
-            crate::guard::POSITION_REASON
-        },
-    }))
+    let reason = if endless {
+        crate::guard::GROUND_REASON
+    } else {
+        crate::guard::POSITION_REASON
+    };
+    Err(InvalidValue::new("release.ground", ground, reason).into())
 }

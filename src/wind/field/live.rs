@@ -213,15 +213,12 @@ impl WindField {
 
 /// An easing's τ: finite and ≥ 0.
 fn check_time_constant(time_constant: f32) -> Result<(), WindError> {
-    if time_constant.is_finite() && time_constant >= 0.0 {
-        Ok(())
-    } else {
-        Err(WindError::Invalid(InvalidValue {
-            field: "time_constant",
-            value: time_constant,
-            reason: "must be finite and ≥ 0",
-        }))
-    }
+    Ok(InvalidValue::check(
+        time_constant.is_finite() && time_constant >= 0.0,
+        "time_constant",
+        time_constant,
+        "must be finite and ≥ 0",
+    )?)
 }
 
 #[cfg(test)]

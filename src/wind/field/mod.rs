@@ -117,11 +117,9 @@ impl WindField {
         let dims = grid_dims(&config);
         let shape = GridShape::new(&dims);
         let synth = Synthesizer::shared(&dims, config.beta, config.fft).map_err(|e| match e {
-            SpectrumError::Beta(beta) => WindError::Invalid(InvalidValue {
-                field: "beta",
-                value: beta,
-                reason: "must be finite and ≥ 0",
-            }),
+            SpectrumError::Beta(beta) => {
+                InvalidValue::new("beta", beta, "must be finite and ≥ 0").into()
+            }
             SpectrumError::NoAxis
             | SpectrumError::TooManyAxes { .. }
             | SpectrumError::AxisTooShort { .. } => WindError::GridAxis {

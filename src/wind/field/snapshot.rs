@@ -32,13 +32,7 @@ impl WindField {
             ("drift", snapshot.drift.x + snapshot.drift.y),
             ("drift_since", snapshot.drift_since),
         ] {
-            if !value.is_finite() {
-                return Err(WindError::Invalid(InvalidValue {
-                    field,
-                    value: value as f32,
-                    reason: "must be finite",
-                }));
-            }
+            InvalidValue::check(value.is_finite(), field, value as f32, "must be finite")?;
         }
         let mut field = WindField::new(snapshot.config.clone())?;
         field.set_clock(snapshot.time);
