@@ -306,46 +306,54 @@ fn assert_smooth(name: &str, moves: &[f32]) {
     );
 }
 
-/// 144 Hz frames over a 60 Hz fixed step: every body moved on the fixed step (falling object,
-/// rigid plate, particle cloth, procedural cloth) moves a similar amount in every frame.
-#[test]
-fn bodies_move_smoothly_at_144_hz_over_a_60_hz_step() {
+/// An app of `plugins` with 144 Hz frames and four bodies moved on the simulation's step, each
+/// with how to read what is shown of it: a paper sheet let go `height` m up, a rigid plate 30 m
+/// up, a particle-cloth flag and a procedural flag.
+fn bodies_at_144_hz(
+    plugins: WindfallPlugins,
+    height: f32,
+) -> (App, [(&'static str, Probe, Entity); 4]) {
     let mut app = headless_app_with_meshes();
     app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
         1.0 / 144.0,
     )))
-    .add_plugins(WindfallPlugins::default());
+    .add_plugins(plugins);
     ready(&mut app);
-    assert_eq!(app.world().resource::<Time<Fixed>>().timestep(), STEP);
-    let leaf = app
-        .world_mut()
+    let world = app.world_mut();
+    let sheet = world
         .spawn((
             FallPreset::PaperSheet.object(),
-            Transform::from_xyz(0.0, 30.0, 0.0),
+            Transform::from_xyz(0.0, height, 0.0),
         ))
         .id();
-    let plate = app
-        .world_mut()
+    let plate = world
         .spawn((card(), Transform::from_xyz(2.0, 30.0, 0.0)))
         .id();
-    let cloth = app
-        .world_mut()
+    let cloth = world
         .spawn((physical_flag(), Transform::from_xyz(4.0, 4.0, 0.0)))
         .id();
-    let flag = app
-        .world_mut()
+    let flag = world
         .spawn((small_flag(), Transform::from_xyz(8.0, 4.0, 0.0)))
         .id();
-    // Settle for a second, then record 2 s.
-    for _ in 0..144 {
-        app.update();
-    }
-    let tracks: [(&str, Probe, Entity); 4] = [
-        ("falling object", pose, leaf),
+    let tracks: [(&'static str, Probe, Entity); 4] = [
+        ("falling object", pose, sheet),
         ("rigid plate", pose, plate),
         ("particle cloth", meshes_positions, cloth),
         ("procedural cloth", meshes_positions, flag),
     ];
+    (app, tracks)
+}
+
+/// 144 Hz frames over a 60 Hz fixed step: every body moved on the fixed step (falling object,
+/// rigid plate, particle cloth, procedural cloth) moves a similar amount in every frame.
+#[test]
+fn bodies_move_smoothly_at_144_hz_over_a_60_hz_step() {
+    let (mut app, tracks) = bodies_at_144_hz(WindfallPlugins::default(), 30.0);
+    assert_eq!(app.world().resource::<Time<Fixed>>().timestep(), STEP);
+    // Settle for a second, then record 2 s.
+    for _ in 0..144 {
+        app.update();
+    }
     let mut last: Vec<Vec<Vec3>> = tracks.iter().map(|(_, f, e)| f(&app, *e)).collect();
     let mut moves = vec![Vec::new(); tracks.len()];
     for _ in 0..288 {
@@ -372,37 +380,7 @@ fn a_paused_game_shows_every_body_where_it_was() {
 }
 
 fn paused_frames_show_the_last_poses(plugins: WindfallPlugins) {
-    let mut app = headless_app_with_meshes();
-    app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
-        1.0 / 144.0,
-    )))
-    .add_plugins(plugins);
-    ready(&mut app);
-    let sheet = app
-        .world_mut()
-        .spawn((
-            FallPreset::PaperSheet.object(),
-            Transform::from_xyz(0.0, 12.0, 0.0),
-        ))
-        .id();
-    let plate = app
-        .world_mut()
-        .spawn((card(), Transform::from_xyz(2.0, 30.0, 0.0)))
-        .id();
-    let cloth = app
-        .world_mut()
-        .spawn((physical_flag(), Transform::from_xyz(4.0, 4.0, 0.0)))
-        .id();
-    let flag = app
-        .world_mut()
-        .spawn((small_flag(), Transform::from_xyz(8.0, 4.0, 0.0)))
-        .id();
-    let tracks: [(&str, Probe, Entity); 4] = [
-        ("falling object", pose, sheet),
-        ("rigid plate", pose, plate),
-        ("particle cloth", meshes_positions, cloth),
-        ("procedural cloth", meshes_positions, flag),
-    ];
+    let (mut app, tracks) = bodies_at_144_hz(plugins, 12.0);
     let shown =
         |app: &App| -> Vec<Vec<Vec3>> { tracks.iter().map(|(_, f, e)| f(app, *e)).collect() };
     // Pause at several shares of a fixed step, each after a few frames of motion.

@@ -70,14 +70,7 @@ fn run(shuffle_seed: Option<u64>) -> Run {
         Transform::from_xyz(-12.0, 4.0, 0.0).looking_at(Vec3::new(0.0, 6.0, 0.0), Vec3::Y),
     ));
     if let Some(seed) = shuffle_seed {
-        let mut schedules = app.world_mut().resource_mut::<Schedules>();
-        for (_, schedule) in schedules.iter_mut() {
-            let settings = ScheduleBuildSettings {
-                shuffle_seed: Some(seed),
-                ..schedule.get_build_settings()
-            };
-            schedule.set_build_settings(settings);
-        }
+        shuffle_schedules(&mut app, seed);
     }
     ready(&mut app);
     for _ in 0..STEPS {
@@ -94,6 +87,18 @@ fn run(shuffle_seed: Option<u64>) -> Run {
     Run {
         hash: hash_state(app.world_mut()),
         order,
+    }
+}
+
+/// Lets Bevy order every schedule's unordered systems by `seed`.
+fn shuffle_schedules(app: &mut App, seed: u64) {
+    let mut schedules = app.world_mut().resource_mut::<Schedules>();
+    for (_, schedule) in schedules.iter_mut() {
+        let settings = ScheduleBuildSettings {
+            shuffle_seed: Some(seed),
+            ..schedule.get_build_settings()
+        };
+        schedule.set_build_settings(settings);
     }
 }
 
@@ -225,14 +230,7 @@ fn a_system_runs_between_the_leaves_and_the_cloth() {
             ),
         );
         if let Some(seed) = shuffle {
-            let mut schedules = app.world_mut().resource_mut::<Schedules>();
-            for (_, schedule) in schedules.iter_mut() {
-                let settings = ScheduleBuildSettings {
-                    shuffle_seed: Some(seed),
-                    ..schedule.get_build_settings()
-                };
-                schedule.set_build_settings(settings);
-            }
+            shuffle_schedules(&mut app, seed);
         }
         ready(&mut app);
         let steps_before = app.world().resource::<Seen>().between.len();
