@@ -73,10 +73,9 @@ pub enum SimulateSystems {
     Aero,
 }
 
-/// Marks that [`WindfallSystems::Simulate`] waits for time to move in the frame-rate schedule
-/// it runs in.
-#[derive(Resource)]
-struct PausableIn;
+/// The frame-rate schedules in which [`WindfallSystems::Simulate`] waits for time to move.
+#[derive(Resource, Default)]
+struct PausableIn(Vec<InternedScheduleLabel>);
 
 /// Whether this frame's time moves: in a frame-rate schedule, [`WindfallSystems::Simulate`]
 /// runs only then.
@@ -157,9 +156,10 @@ pub(crate) fn configure_sets(app: &mut App, schedule: InternedScheduleLabel) {
     // A frame-rate schedule steps by the frame's time, which is zero while `Time<Virtual>` is
     // paused (a fixed step always has its timestep). Once per schedule: every plugin calls this.
     let fixed = WindfallSchedule(schedule).is_fixed();
-    if !fixed && !app.world().contains_resource::<PausableIn>() {
-        app.insert_resource(PausableIn)
-            .configure_sets(schedule, WindfallSystems::Simulate.run_if(time_moves));
+    let mut pausable = app.world_mut().get_resource_or_init::<PausableIn>();
+    if !fixed && !pausable.0.contains(&schedule) {
+        pausable.0.push(schedule);
+        app.configure_sets(schedule, WindfallSystems::Simulate.run_if(time_moves));
     }
     app.register_type::<WindfallSchedule>()
         .configure_sets(

@@ -162,7 +162,7 @@ impl WindConfig {
         InvalidValue::check(
             crate::guard::unit_vec2(d).is_some(),
             "direction",
-            d.abs().max_element(),
+            crate::guard::largest_component(d.extend(0.0)),
             "must be finite and non-zero",
         )?;
         InvalidValue::check(

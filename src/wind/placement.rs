@@ -56,7 +56,7 @@ pub(super) fn world_place(entity: Entity, hierarchy: &Hierarchy) -> Result<Place
         let Some(e) = at else {
             let origin = affine.translation;
             return Placement::new(origin, rotation)
-                .ok_or_else(|| nowhere(origin.abs().max_element()));
+                .ok_or_else(|| nowhere(crate::guard::largest_component(origin.into())));
         };
         let Ok((transform, parent)) = hierarchy.get(e) else {
             // An ancestor without a transform places its children at its origin.
@@ -203,7 +203,7 @@ pub(super) fn place_wind_sources(
             "WindSource",
             NOTHING,
         );
-        if source.finished(now - start) {
+        if here.is_some() && source.finished(now - start) {
             commands.entity(entity).try_insert(SourceStart {
                 at: start,
                 finished: true,

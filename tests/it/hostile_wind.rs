@@ -1,8 +1,7 @@
 //! Hostile input, third round, on local wind: a source with a non-finite or huge number set by
 //! hand blows nothing (or a bounded amount) and never cancels the valid sources beside it; a
 //! blast never blows inward, whatever the sign of its strength or speed; sizes beyond the world
-//! are refused by the `try_` constructors and held by the plain ones, so a source's reach is
-//! always finite.
+//! are refused by name (`validate` and the `WindSourceInvalid` marker) and blow nothing.
 
 use crate::common;
 
@@ -399,4 +398,36 @@ fn a_finished_one_shot_stays_finished_when_the_field_is_replaced() {
             assert_eq!(wind(&app, p), Vec3::ZERO, "step {step} at {p}");
         }
     }
+}
+
+/// A one-shot refused by its checks is not counted finished: fixed in place, it loses its marker
+/// and fires (a refused blast used to count as finished at once and keep its marker for good).
+#[test]
+fn a_refused_blast_fixed_in_place_fires() {
+    let mut app = still_app();
+    let blast = app
+        .world_mut()
+        .spawn((
+            WindSource::blast(20.0, f32::INFINITY, 8.0),
+            Transform::from_xyz(0.0, 1.0, 0.0),
+        ))
+        .id();
+    for _ in 0..5 {
+        app.update();
+    }
+    let marker = app.world().get::<WindSourceInvalid>(blast).expect("marked");
+    assert_eq!(marker.0.field(), "shape.front_speed");
+    *app.world_mut().get_mut::<WindSource>(blast).unwrap() = WindSource::blast(20.0, 10.0, 8.0);
+    let mut strongest = 0.0f32;
+    for _ in 0..30 {
+        app.update();
+        for r in [1.0, 2.0, 3.0, 4.0] {
+            strongest = strongest.max(wind(&app, Vec3::new(r, 1.0, 0.0)).x);
+        }
+    }
+    assert!(app.world().get::<WindSourceInvalid>(blast).is_none());
+    assert!(
+        strongest > 5.0,
+        "the fixed blast blew {strongest} m/s at most"
+    );
 }

@@ -207,9 +207,10 @@ impl WindSource {
         })
     }
 
-    /// How far from its origin the source can blow, m (0: nowhere).
+    /// How far from its origin the source can blow, m (0: nowhere, and for sizes that
+    /// [`Self::validate`] refuses).
     pub fn reach(&self) -> f32 {
-        match self.shape {
+        let reach = match self.shape {
             SourceShape::Sphere { radius, .. }
             | SourceShape::Vortex { radius, .. }
             | SourceShape::Blast { radius, .. } => radius,
@@ -218,6 +219,11 @@ impl WindSource {
             SourceShape::Gust { width, range, .. } => {
                 (range + width).hypot(range * std::f32::consts::FRAC_1_SQRT_2)
             }
+        };
+        if reach.is_finite() && reach >= 0.0 {
+            reach
+        } else {
+            0.0
         }
     }
 
