@@ -121,7 +121,7 @@ fn draw_wind_arrows(wind: Res<WindField>, mut gizmos: Gizmos<WindGizmos>) {
 
 /// Draws the sources that blow (one refused by its checks blows nothing and is not drawn).
 fn draw_wind_sources(
-    sources: Query<(&WindSource, &GlobalTransform), Without<super::WindSourceInvalid>>,
+    sources: Query<(&WindSource, &GlobalTransform), Without<super::source::WindSourceInvalid>>,
     mut gizmos: Gizmos<WindGizmos>,
 ) {
     if !gizmos.config.enabled {
