@@ -1,19 +1,17 @@
-//! How a falling object looks: its outline (a maple, oak or birch leaf, an ovate leaf, an
-//! ellipse of paper, a coin, a card) and its colours, from its [`FallPreset`] or, without one,
-//! from its [`Shape`]. One source for the single objects' meshes, the leaf cloud's mesh and the
-//! examples.
+//! How a falling object is outlined (a maple, oak or birch leaf, an ovate leaf, an ellipse of
+//! paper, a coin, a card), from its [`FallPreset`] or, without one, from its [`Shape`], and the
+//! colours of a leaf without a preset: one source for the single objects' meshes
+//! ([`FallingObject::mesh`](super::FallingObject::mesh)), the leaf cloud's mesh and the
+//! examples. A preset's palette is [`FallPreset::palette`].
 //!
 //! Hand-written: the outlines are polar functions chosen by eye (no crate draws leaves).
 
 use std::f32::consts::{PI, TAU};
 
-use bevy::asset::RenderAssetUsages;
 use bevy::color::Color;
-use bevy::math::{Vec2, Vec3};
-use bevy::mesh::{Indices, Mesh, PrimitiveTopology};
+use bevy::math::Vec2;
 
 use super::model::body::Shape;
-use super::object::FallingObject;
 use super::presets::FallPreset;
 
 /// Reds, oranges, yellows and browns: the look of a leaf without a preset.
@@ -26,108 +24,14 @@ pub(crate) const AUTUMN: [Color; 5] = [
 ];
 
 /// Outline points of a single object's mesh (a cloud draws [`CLOUD_POINTS`]).
-const SINGLE_POINTS: usize = 72;
+pub(crate) const SINGLE_POINTS: usize = 72;
 
 /// Outline points of each leaf of a cloud: enough for the maple's five lobes at a distance.
 #[cfg_attr(not(feature = "render"), allow(dead_code))]
 pub(crate) const CLOUD_POINTS: usize = 14;
 
-impl FallPreset {
-    /// The colours objects of this preset are drawn in (sRGB); each object takes one by its seed.
-    pub fn palette(self) -> &'static [Color] {
-        const COIN: [Color; 2] = [Color::srgb(0.80, 0.81, 0.83), Color::srgb(0.70, 0.72, 0.75)];
-        const PAPER: [Color; 2] = [Color::srgb(0.96, 0.95, 0.91), Color::srgb(0.93, 0.93, 0.96)];
-        const GREEN: [Color; 3] = [
-            Color::srgb(0.33, 0.55, 0.14),
-            Color::srgb(0.45, 0.62, 0.18),
-            Color::srgb(0.56, 0.64, 0.16),
-        ];
-        const MAPLE: [Color; 4] = [
-            Color::srgb(0.82, 0.20, 0.06),
-            Color::srgb(0.92, 0.45, 0.08),
-            Color::srgb(0.72, 0.12, 0.05),
-            Color::srgb(0.95, 0.62, 0.12),
-        ];
-        const OAK: [Color; 4] = [
-            Color::srgb(0.58, 0.34, 0.12),
-            Color::srgb(0.66, 0.44, 0.16),
-            Color::srgb(0.48, 0.28, 0.10),
-            Color::srgb(0.72, 0.52, 0.20),
-        ];
-        const BIRCH: [Color; 3] = [
-            Color::srgb(0.96, 0.78, 0.15),
-            Color::srgb(0.90, 0.68, 0.10),
-            Color::srgb(0.86, 0.80, 0.26),
-        ];
-        const CARD: [Color; 2] = [Color::srgb(0.97, 0.97, 0.95), Color::srgb(0.80, 0.10, 0.12)];
-        const SAMARA: [Color; 2] = [Color::srgb(0.80, 0.74, 0.44), Color::srgb(0.70, 0.66, 0.38)];
-        match self {
-            Self::Coin => &COIN,
-            Self::PaperSheet => &PAPER,
-            Self::Leaf => &GREEN,
-            Self::MapleLeaf => &MAPLE,
-            Self::OakLeaf => &OAK,
-            Self::BirchLeaf => &BIRCH,
-            Self::PlayingCard => &CARD,
-            Self::Samara => &SAMARA,
-        }
-    }
-}
-
-impl FallingObject {
-    /// The colours it is drawn in: its [`look`](Self::look)'s palette, autumn without one.
-    pub fn palette(&self) -> &'static [Color] {
-        self.look.map_or(&AUTUMN, FallPreset::palette)
-    }
-
-    /// Its colour: one of its [`palette`](Self::palette), chosen by its seed.
-    pub fn color(&self) -> Color {
-        self.palette()[self.color_index()]
-    }
-
-    /// Which colour of its palette it takes.
-    pub(crate) fn color_index(&self) -> usize {
-        (mix(self.seed) % self.palette().len() as u64) as usize
-    }
-
-    /// Its mesh at its size: the plate in the local XZ plane (long axis Z, faces toward ±Y, as
-    /// it falls), outlined as its [`look`](Self::look) (a maple, oak or birch leaf, …) or, without
-    /// one, as its [`Shape`]; leaves are folded a little along the midrib so that light shows
-    /// their shape from either side. Flat normals; draw it with a two-sided material.
-    pub fn mesh(&self) -> Mesh {
-        let (centre, outline) = outline(self.look, &self.shape, SINGLE_POINTS);
-        let (_, major) = extent(&self.shape);
-        let fold = fold(self.look, &self.shape);
-        // The fold along the midrib, and the tip and stalk curling up a little.
-        let lift = |p: Vec2| {
-            let curl = if fold > 0.0 {
-                0.3 * p.y * p.y / major
-            } else {
-                0.0
-            };
-            Vec3::new(p.x, fold * p.x.abs() + curl, p.y)
-        };
-        let mut positions = vec![lift(centre)];
-        positions.extend(outline.iter().map(|&p| lift(p)));
-        let n = outline.len() as u32;
-        let indices = (0..n).flat_map(|i| [0, 1 + i, 1 + (i + 1) % n]).collect();
-        let mut mesh = Mesh::new(
-            PrimitiveTopology::TriangleList,
-            RenderAssetUsages::default(),
-        )
-        .with_inserted_attribute(
-            Mesh::ATTRIBUTE_POSITION,
-            positions.iter().map(|p| p.to_array()).collect::<Vec<_>>(),
-        )
-        .with_inserted_indices(Indices::U32(indices));
-        mesh.duplicate_vertices();
-        mesh.compute_flat_normals();
-        mesh
-    }
-}
-
 /// (width along X, length along Z) of a shape's plate, m.
-fn extent(shape: &Shape) -> (f32, f32) {
+pub(crate) fn extent(shape: &Shape) -> (f32, f32) {
     match *shape {
         Shape::Disk { diameter, .. } => (diameter, diameter),
         Shape::Rectangle { length, width, .. } => (width, length),
@@ -136,7 +40,7 @@ fn extent(shape: &Shape) -> (f32, f32) {
 }
 
 /// Rise of a leaf's edges per metre of half-width: leaves fold, paper, cards and coins do not.
-fn fold(look: Option<FallPreset>, shape: &Shape) -> f32 {
+pub(crate) fn fold(look: Option<FallPreset>, shape: &Shape) -> f32 {
     match (look, shape) {
         (_, Shape::Disk { .. } | Shape::Rectangle { .. }) => 0.0,
         (Some(FallPreset::PaperSheet | FallPreset::Coin | FallPreset::PlayingCard), _) => 0.0,
@@ -256,6 +160,8 @@ pub(crate) fn mix(x: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::freefall::object::FallingObject;
+    use bevy::mesh::Mesh;
 
     /// Every outline spans its shape exactly and winds so that the fan's faces point up (+Y),
     /// for every preset and without one.

@@ -4,14 +4,18 @@
 
 use std::sync::Arc;
 
+use bevy::asset::RenderAssetUsages;
+use bevy::color::Color;
 use bevy::ecs::prelude::*;
-use bevy::math::Vec3;
+use bevy::math::{Vec2, Vec3};
+use bevy::mesh::{Indices, Mesh, PrimitiveTopology};
 use bevy::reflect::Reflect;
 use bevy::reflect::std_traits::ReflectDefault;
 use bevy::transform::components::Transform;
 
 use super::fall_lod::FallLod;
 use super::fall_store::FallStore;
+use super::look::{AUTUMN, SINGLE_POINTS, extent, fold, mix, outline};
 use super::model::FallModel;
 use super::model::body::{Fluid, Shape};
 use super::model::error::FallError;
@@ -331,6 +335,59 @@ pub struct Landed {
 pub struct FallSettings {
     /// Height of the ground, m: objects stop there.
     pub ground_height: f32,
+}
+
+/// How it is drawn: its colours and its mesh (the outlines are [`super::look`]'s).
+impl FallingObject {
+    /// The colours it is drawn in: its [`look`](Self::look)'s palette, autumn without one.
+    pub fn palette(&self) -> &'static [Color] {
+        self.look.map_or(&AUTUMN, FallPreset::palette)
+    }
+
+    /// Its colour: one of its [`palette`](Self::palette), chosen by its seed.
+    pub fn color(&self) -> Color {
+        self.palette()[self.color_index()]
+    }
+
+    /// Which colour of its palette it takes.
+    pub(crate) fn color_index(&self) -> usize {
+        (mix(self.seed) % self.palette().len() as u64) as usize
+    }
+
+    /// Its mesh at its size: the plate in the local XZ plane (long axis Z, faces toward ±Y, as
+    /// it falls), outlined as its [`look`](Self::look) (a maple, oak or birch leaf, …) or, without
+    /// one, as its [`Shape`]; leaves are folded a little along the midrib so that light shows
+    /// their shape from either side. Flat normals; draw it with a two-sided material.
+    pub fn mesh(&self) -> Mesh {
+        let (centre, outline) = outline(self.look, &self.shape, SINGLE_POINTS);
+        let (_, major) = extent(&self.shape);
+        let fold = fold(self.look, &self.shape);
+        // The fold along the midrib, and the tip and stalk curling up a little.
+        let lift = |p: Vec2| {
+            let curl = if fold > 0.0 {
+                0.3 * p.y * p.y / major
+            } else {
+                0.0
+            };
+            Vec3::new(p.x, fold * p.x.abs() + curl, p.y)
+        };
+        let mut positions = vec![lift(centre)];
+        positions.extend(outline.iter().map(|&p| lift(p)));
+        let n = outline.len() as u32;
+        let indices = (0..n).flat_map(|i| [0, 1 + i, 1 + (i + 1) % n]).collect();
+        let mut mesh = Mesh::new(
+            PrimitiveTopology::TriangleList,
+            RenderAssetUsages::default(),
+        )
+        .with_inserted_attribute(
+            Mesh::ATTRIBUTE_POSITION,
+            positions.iter().map(|p| p.to_array()).collect::<Vec<_>>(),
+        )
+        .with_inserted_indices(Indices::U32(indices));
+        mesh.duplicate_vertices();
+        mesh.compute_flat_normals();
+        mesh
+    }
 }
 
 /// The objects of the presets (here, beside the component, so that the presets need not know it).

@@ -18,6 +18,7 @@
 //! the hypothesis of §3.1 at the dwell times in [`FallPreset::dwell_times`], seconds on average
 //! in each motion before the next. The measured seconds per motion are in the report.
 
+use bevy::color::Color;
 use bevy::reflect::Reflect;
 
 use super::model::body::{Fluid, Shape};
@@ -170,5 +171,47 @@ impl FallPreset {
         }
         MarkovChain::from_dwell_times(initial, dwell, next)
             .expect("every preset's chain is a valid upper-triangular matrix")
+    }
+}
+
+impl FallPreset {
+    /// The colours objects of this preset are drawn in (sRGB); each object takes one by its seed.
+    pub fn palette(self) -> &'static [Color] {
+        const COIN: [Color; 2] = [Color::srgb(0.80, 0.81, 0.83), Color::srgb(0.70, 0.72, 0.75)];
+        const PAPER: [Color; 2] = [Color::srgb(0.96, 0.95, 0.91), Color::srgb(0.93, 0.93, 0.96)];
+        const GREEN: [Color; 3] = [
+            Color::srgb(0.33, 0.55, 0.14),
+            Color::srgb(0.45, 0.62, 0.18),
+            Color::srgb(0.56, 0.64, 0.16),
+        ];
+        const MAPLE: [Color; 4] = [
+            Color::srgb(0.82, 0.20, 0.06),
+            Color::srgb(0.92, 0.45, 0.08),
+            Color::srgb(0.72, 0.12, 0.05),
+            Color::srgb(0.95, 0.62, 0.12),
+        ];
+        const OAK: [Color; 4] = [
+            Color::srgb(0.58, 0.34, 0.12),
+            Color::srgb(0.66, 0.44, 0.16),
+            Color::srgb(0.48, 0.28, 0.10),
+            Color::srgb(0.72, 0.52, 0.20),
+        ];
+        const BIRCH: [Color; 3] = [
+            Color::srgb(0.96, 0.78, 0.15),
+            Color::srgb(0.90, 0.68, 0.10),
+            Color::srgb(0.86, 0.80, 0.26),
+        ];
+        const CARD: [Color; 2] = [Color::srgb(0.97, 0.97, 0.95), Color::srgb(0.80, 0.10, 0.12)];
+        const SAMARA: [Color; 2] = [Color::srgb(0.80, 0.74, 0.44), Color::srgb(0.70, 0.66, 0.38)];
+        match self {
+            Self::Coin => &COIN,
+            Self::PaperSheet => &PAPER,
+            Self::Leaf => &GREEN,
+            Self::MapleLeaf => &MAPLE,
+            Self::OakLeaf => &OAK,
+            Self::BirchLeaf => &BIRCH,
+            Self::PlayingCard => &CARD,
+            Self::Samara => &SAMARA,
+        }
     }
 }
