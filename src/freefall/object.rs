@@ -337,7 +337,7 @@ pub struct FallSettings {
     pub ground_height: f32,
 }
 
-/// How it is drawn: its colours and its mesh (the outlines are [`super::look`]'s).
+/// How it is drawn: its colours and its mesh (its outlines are drawn by the private `look` module).
 impl FallingObject {
     /// The colours it is drawn in: its [`look`](Self::look)'s palette, autumn without one.
     pub fn palette(&self) -> &'static [Color] {
