@@ -148,8 +148,16 @@ pub(crate) trait HasLodTiers: Component {
     fn tiers(&self) -> LodTiers;
 }
 
-/// Puts a [`LodInvalid`] on entities whose tiers of `C` changed and fail their check (warned
-/// once), takes it off when they pass or `C` is removed.
+/// Registers the level-of-detail types that every plugin with levels of detail shares (the
+/// focus, the view cone, the tiers and their refusal), for reflection: one list, called by each
+/// such plugin, since each can be added alone.
+pub(crate) fn register_types(app: &mut bevy::app::App) {
+    app.register_type::<LodFocus>()
+        .register_type::<LodView>()
+        .register_type::<LodTiers>()
+        .register_type::<LodInvalid>();
+}
+
 /// Whether [`check_tiers`] has anything to do: a `C` to check, or a [`LodInvalid`] that a
 /// removed `C` may leave behind.
 pub(crate) fn any_tiers<C: HasLodTiers>(
@@ -159,6 +167,8 @@ pub(crate) fn any_tiers<C: HasLodTiers>(
     !(tiers.is_empty() && invalid.is_empty())
 }
 
+/// Puts a [`LodInvalid`] on entities whose tiers of `C` changed and fail their check (warned
+/// once), takes it off when they pass or `C` is removed.
 pub(crate) fn check_tiers<C: HasLodTiers>(
     mut commands: Commands,
     changed: Query<(Entity, &C, Option<&LodInvalid>), Changed<C>>,

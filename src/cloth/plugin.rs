@@ -14,7 +14,6 @@ use super::mesh;
 use super::params::ClothError;
 use super::sim::{ClothAttachment, ClothSim};
 use crate::lifecycle::set_up_changed;
-use crate::lod::{LodFocus, LodTiers};
 use crate::schedule::{SimulateSystems, WindfallSystems};
 use crate::wind::WindField;
 
@@ -27,14 +26,11 @@ impl Plugin for ClothPlugin {
     fn build(&self, app: &mut App) {
         let schedule = self.configure(app);
         crate::lifecycle::observe::<Cloth>(app);
+        crate::lod::register_types(app);
         app.register_type::<Cloth>()
             .register_type::<ClothState>()
             .register_type::<ClothLod>()
-            .register_type::<LodFocus>()
-            .register_type::<crate::lod::LodView>()
-            .register_type::<LodTiers>()
             .register_type::<ClothInvalid>()
-            .register_type::<crate::lod::LodInvalid>()
             .add_systems(
                 PostUpdate,
                 crate::lod::check_tiers::<ClothLod>

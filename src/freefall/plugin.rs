@@ -14,7 +14,6 @@ use super::model::tilt::WindTilt;
 use super::object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
 use super::store::air::Air;
 use super::store::driver::Step;
-use crate::lod::LodFocus;
 use crate::schedule::{SimulateSystems, WindfallSystems};
 use crate::wind::WindField;
 
@@ -30,15 +29,12 @@ impl Plugin for FallPlugin {
         if !app.world().contains_resource::<FallModel>() {
             app.insert_resource(FallModel::default());
         }
+        crate::lod::register_types(app);
         app.register_type::<FallingObject>()
             .register_type::<FallState>()
             .register_type::<FallingObjectInvalid>()
             .register_type::<FallSettings>()
             .register_type::<FallLod>()
-            .register_type::<crate::lod::LodInvalid>()
-            .register_type::<LodFocus>()
-            .register_type::<crate::lod::LodView>()
-            .register_type::<crate::lod::LodTiers>()
             .register_type::<FallModel>()
             .register_type::<super::presets::FallPreset>()
             .init_resource::<FallSettings>()

@@ -13,7 +13,6 @@ use crate::freefall::model::FallModel;
 use crate::freefall::model::error::FallError;
 use crate::freefall::object::FallSettings;
 use crate::lifecycle::Described;
-use crate::lod::{LodFocus, LodTiers};
 use crate::schedule::{SimulateSystems, WindfallSystems};
 use crate::wind::WindField;
 
@@ -61,13 +60,11 @@ impl Plugin for LeafCloudPlugin {
         if !app.world().contains_resource::<FallModel>() {
             app.insert_resource(FallModel::default());
         }
+        crate::lod::register_types(app);
         app.register_type::<LeafCloud>()
             .register_type::<LeafCloudState>()
             .register_type::<LeafCloudInvalid>()
-            .register_type::<LodFocus>()
-            .register_type::<crate::lod::LodView>()
             .register_type::<CloudRegion>()
-            .register_type::<LodTiers>()
             .init_resource::<FallSettings>()
             // Only with a cloud to move (a system with nothing to do still costs a wake-up).
             .add_systems(
