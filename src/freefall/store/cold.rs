@@ -17,6 +17,7 @@ use crate::freefall::model::random::FallRng;
 use crate::freefall::model::regime::PrimitiveMotion;
 use crate::freefall::model::release::FallRelease;
 use crate::lod::LodTiers;
+use crate::math::geometry::Q;
 
 /// Everything that starts a fall.
 #[derive(Clone, Debug)]
@@ -39,6 +40,26 @@ pub(crate) struct Blend {
     pub offset: Vec3,
     pub elapsed: f32,
     pub length: f32,
+    /// What was shown when the blend began × the piece's own tilt then, inverted: the identity,
+    /// unless the change came while another blend ran (the new blend starts from what that one
+    /// showed, not from the piece's own tilt).
+    pub residual: Q<f32>,
+}
+
+impl Blend {
+    /// The tilt the blend starts from, at its current time: the piece's, coasting past its end
+    /// ([`Piece::coasting_tilt`]), after the residual.
+    pub fn tilt(&self, db: &TrajectoryDatabase) -> Q<f32> {
+        self.residual
+            .mul(Q::of(self.piece.coasting_tilt(db, self.time, self.length)))
+            .normalize()
+    }
+
+    /// What the blend shows at its current time, blending into `tilt`, the new piece's.
+    pub fn shown(&self, db: &TrajectoryDatabase, tilt: Q<f32>) -> Q<f32> {
+        self.tilt(db)
+            .slerp(tilt, smoothstep(self.elapsed / self.length))
+    }
 }
 
 /// The part of the release orientation the synthesis does not reproduce, fading out.
@@ -216,4 +237,11 @@ impl Cold {
         let fresh = Piece::curve(&self.scales, self.motion, self.amplitude, 0.0, 0.0);
         !matches!(fresh, Piece::Curve { eccentricity: e, lobes: l, .. } if e == *eccentricity && l == *lobes)
     }
+}
+
+/// 3x² − 2x³ on x clamped to [0, 1] (bevy_curve's `EaseFunction::SmoothStep`): how a blend and
+/// the release's residual fade.
+pub(crate) fn smoothstep(x: f32) -> f32 {
+    use bevy::curve::{Curve, EaseFunction};
+    EaseFunction::SmoothStep.sample_clamped(x)
 }

@@ -16,6 +16,7 @@ use bevy::math::{Quat, Vec2, Vec3};
 use super::database::{SEGMENT_SAMPLES, TrajectoryDatabase};
 use super::motion::{CHAOTIC_MIN_TIME, CHAOTIC_SCALE, FallScales, Glide, MOTION_SHAPES};
 use super::regime::PrimitiveMotion;
+use crate::math::geometry::Q;
 use crate::math::kernels::sin_cos;
 
 pub(crate) mod sample;
@@ -252,6 +253,29 @@ impl Piece {
         turn * (shape[last] - shape[last - 1]) * last as f32 / duration
     }
 
+    /// [`Piece::tilt`], except that past a swing's end the plate keeps turning at the rate it
+    /// ended with ([`Piece::end_rate`]), the rate falling linearly to zero over τ: what the
+    /// plate shows of a swing it leaves for another motion while the change blends (a card that
+    /// tumbles into a spiral does not stop dead). τ is `fade` or shorter, so that the plate turns
+    /// on by at most [`COAST_ANGLE`]; polynomial, so the same bits everywhere.
+    pub fn coasting_tilt(&self, db: &TrajectoryDatabase, t: f32, fade: f32) -> Quat {
+        let tilt = self.tilt(db, t);
+        let past = t - self.duration();
+        let rate = self.end_rate(db);
+        if !(past > 0.0 && rate.is_finite() && rate != 0.0 && fade > 0.0) {
+            return tilt;
+        }
+        let tau = fade.min(2.0 * COAST_ANGLE / rate.abs());
+        let x = past.min(tau);
+        let extra = rate * (x - 0.5 * x * x / tau);
+        let (sin, cos) = sin_cos(0.5 * extra);
+        // Both turn about the heading frame's z: the order does not matter.
+        Q::of(tilt)
+            .mul(Q::new(0.0, 0.0, sin, cos))
+            .normalize()
+            .quat()
+    }
+
     /// Plate angle at the end, about the heading frame's z (for a curve: its half-turns).
     pub fn end_angle(&self) -> f32 {
         match *self {
@@ -260,6 +284,11 @@ impl Piece {
         }
     }
 }
+
+/// The most a plate turns on past the end of a swing it leaves for another motion, rad
+/// ([`Piece::coasting_tilt`]): less than the quarter turn past which the blend's slerp would take
+/// the shorter way round, the other way.
+pub const COAST_ANGLE: f32 = std::f32::consts::FRAC_PI_4;
 
 /// Shortest piece, s: keeps the piece loop finite for any input.
 pub const MIN_PIECE: f32 = 1e-4;

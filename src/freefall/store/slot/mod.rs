@@ -9,7 +9,7 @@ use bevy::math::Vec3;
 pub(crate) mod release;
 
 use super::block::{Block, Constants};
-use super::cold::{Blend, Cold, Easing};
+use super::cold::{Blend, Cold, Easing, smoothstep};
 use super::kernel::{self, Motion, commit, fall_on, motion, orient, sample_piece, turned, yaw};
 use super::pose::{LeafPose, shown, smoothed};
 use crate::freefall::fall_lod::FallClock;
@@ -193,8 +193,7 @@ impl<K: Constants> Slot<'_, K> {
         }
         let (delta, tilt) = self.still_step(model, dt, wind);
         let tilt = match &self.cold.previous {
-            Some(old) => Q::of(old.piece.tilt(db, old.time))
-                .slerp(tilt, smoothstep(old.elapsed / old.length)),
+            Some(old) => old.shown(db, tilt),
             None => tilt,
         };
         if self.cold.release.is_none() {
@@ -309,12 +308,22 @@ impl<K: Constants> Slot<'_, K> {
         cold.piece = cold.build_piece(db, theta, survival, Some(old));
         if changed && !(matches!(old, Piece::Swing { .. }) && cold.motion.is_planar()) {
             let h = &self.block.hot;
+            let time = h.t[k];
+            // A change while another blends starts from what that blend shows now.
+            let residual = match cold.previous.as_deref() {
+                Some(running) => {
+                    let own = Q::of(old.tilt(db, time));
+                    running.shown(db, own).mul(own.conjugate()).normalize()
+                }
+                None => Q::identity(),
+            };
             cold.previous = Some(Box::new(Blend {
                 piece: old,
-                time: h.t[k],
+                time,
                 offset: Vec3::new(h.ox[k], h.oy[k], h.oz[k]),
                 elapsed: 0.0,
                 length: (BLEND_SWINGS * cold.scales.swing_time()).max(MIN_BLEND),
+                residual,
             }));
         }
         let piece = cold.piece;
@@ -353,11 +362,4 @@ impl<K: Constants> Slot<'_, K> {
         );
         lean.mul(residual).mul(heading.mul(piece)).normalize()
     }
-}
-
-/// 3x² − 2x³ on x clamped to [0, 1] (bevy_curve's `EaseFunction::SmoothStep`): how a blend and
-/// the release's residual fade.
-pub(crate) fn smoothstep(x: f32) -> f32 {
-    use bevy::curve::{Curve, EaseFunction};
-    EaseFunction::SmoothStep.sample_clamped(x)
 }
