@@ -4,6 +4,10 @@
 //! v += (g + c |u − v| (u − v)) dt, x += v dt. Also the cost of posing the cloud for drawing and
 //! what levels of detail save.
 //!
+//! The leaf's own work is also measured on one thread against a yardstick that does not move
+//! with the crate: drag particles reading a frozen 64³ grid of velocities by trilinear
+//! interpolation, written here.
+//!
 //! Run: `cargo bench --bench cloud`. Figures are in the README's Performance section.
 
 use bevy_windfall::lod::LodTiers;
@@ -82,6 +86,65 @@ fn drag_particles(mut particles: &mut [(Vec3, Vec3)], wind: &WindField, pool: Op
     }
 }
 
+/// The yardstick that does not move with the crate: a drag particle reading a frozen 64³ grid of
+/// velocities by trilinear interpolation (scalar f32, eight gathers), written here. The grid
+/// holds the wind field's velocities at its nodes over the storm's region, 16 m above and below.
+struct FrozenGrid {
+    min: Vec3,
+    inverse_cell: Vec3,
+    velocities: Vec<Vec3>,
+}
+
+impl FrozenGrid {
+    const N: usize = 64;
+
+    fn sampled(wind: &WindField) -> Self {
+        let region = storm(LodTiers::FULL).region;
+        let (min, max) = (
+            region.min - Vec3::new(0.0, 16.0, 0.0),
+            region.max + Vec3::new(0.0, 16.0, 0.0),
+        );
+        let cell = (max - min) / (Self::N - 1) as f32;
+        let n = Self::N;
+        let points: Vec<Vec3> = (0..n * n * n)
+            .map(|i| {
+                min + cell * Vec3::new((i % n) as f32, (i / n % n) as f32, (i / (n * n)) as f32)
+            })
+            .collect();
+        let mut velocities = Vec::with_capacity(points.len());
+        wind.velocities_at(&points, wind.time(), &mut velocities);
+        Self {
+            min,
+            inverse_cell: cell.recip(),
+            velocities,
+        }
+    }
+
+    fn at(&self, p: Vec3) -> Vec3 {
+        let n = Self::N;
+        let g = ((p - self.min) * self.inverse_cell)
+            .clamp(Vec3::ZERO, Vec3::splat((n - 1) as f32 - 1e-3));
+        let (i, j, k) = (g.x as usize, g.y as usize, g.z as usize);
+        let f = g - Vec3::new(i as f32, j as f32, k as f32);
+        let at = |a: usize, b: usize, c: usize| self.velocities[a + n * (b + n * c)];
+        let x00 = at(i, j, k).lerp(at(i + 1, j, k), f.x);
+        let x10 = at(i, j + 1, k).lerp(at(i + 1, j + 1, k), f.x);
+        let x01 = at(i, j, k + 1).lerp(at(i + 1, j, k + 1), f.x);
+        let x11 = at(i, j + 1, k + 1).lerp(at(i + 1, j + 1, k + 1), f.x);
+        x00.lerp(x10, f.y).lerp(x01.lerp(x11, f.y), f.z)
+    }
+}
+
+/// Frozen-grid drag particles, one thread: v += (g + c |u − v| (u − v)) dt, x += v dt.
+fn frozen_drag_particles(particles: &mut [(Vec3, Vec3)], grid: &FrozenGrid) {
+    let c = 0.5 * 1.2 * 1.2 * 2.4e-3 / 3.6e-4;
+    for (x, v) in particles.iter_mut() {
+        let relative = grid.at(*x) - *v;
+        *v += (Vec3::new(0.0, -9.81, 0.0) + c * relative.length() * relative) * DT;
+        *x += *v * DT;
+    }
+}
+
 fn cloud(c: &mut Criterion) {
     let pool = TaskPoolBuilder::new().num_threads(2).build();
     let model = FallModel::default();
@@ -137,6 +200,14 @@ fn cloud(c: &mut Criterion) {
         b.iter_batched_ref(
             || particles.clone(),
             |p| drag_particles(p, &wind, None),
+            BatchSize::LargeInput,
+        )
+    });
+    let frozen = FrozenGrid::sampled(&wind);
+    group.bench_function("baseline_frozen_drag_particles_one_thread", |b| {
+        b.iter_batched_ref(
+            || particles.clone(),
+            |p| frozen_drag_particles(p, &frozen),
             BatchSize::LargeInput,
         )
     });
