@@ -177,6 +177,20 @@ fn faces(c: &mut Criterion) {
             black_box(physical.positions()[0])
         })
     });
+    // The same flag with the longest tick a cloth takes (4 ms, `ParticleCloth::LONGEST_TICK`):
+    // half the ticks a frame (tests/it/physical_flag.rs `ticks_give_the_same_flag` measures what
+    // it changes).
+    let mut long_ticks = physical.clone();
+    long_ticks.tick = ParticleCloth::LONGEST_TICK;
+    for _ in 0..60 {
+        long_ticks.step(DT, gravity, &breeze);
+    }
+    group.bench_function("flag_step_36x24_8ms/physical_particles_4ms_ticks", |b| {
+        b.iter(|| {
+            long_ticks.step(DT, gravity, &breeze);
+            black_box(long_ticks.positions()[0])
+        })
+    });
     group.finish();
 }
 
