@@ -286,8 +286,9 @@ impl Piece {
 }
 
 /// The most a plate turns on past the end of a swing it leaves for another motion, rad
-/// ([`Piece::coasting_tilt`]): less than the quarter turn past which the blend's slerp would take
-/// the shorter way round, the other way.
+/// ([`Piece::coasting_tilt`]): a bound that keeps what the blend starts from near what it heads
+/// for (its slerp takes the shorter way round, which changes side past a half turn apart).
+/// Fast swings stop the sooner: τ = 2 · this / |rate|.
 pub const COAST_ANGLE: f32 = std::f32::consts::FRAC_PI_4;
 
 /// Shortest piece, s: keeps the piece loop finite for any input.
