@@ -537,31 +537,8 @@ fn drift_in_still_air_comes_to_rest_without_subnormals() {
 #[test]
 #[ignore = "missed: 59 of 768 falls: 13 paper sheets (steps of 58–71° beside steps of 17–33°, their tumble's own fastest: a half turn in five frames) and 46 samaras (steps of 69–78° beside steps of 31–36°: a swing in four frames)"]
 fn no_step_turns_far_beyond_the_steps_around_it() {
-    let model = FallModel::default();
-    let wind = gusty_wind();
-    let mut found = Vec::new();
-    let mut falls = 0;
-    for preset in FallPreset::ALL {
-        for seed in 0..48u64 {
-            for (w, wind) in [None, Some(&wind)].into_iter().enumerate() {
-                let object = FallingObject {
-                    seed,
-                    ..preset.object()
-                };
-                let (turns, _) = changes(&object, &model, wind, 600, false);
-                falls += 1;
-                let snaps: Vec<_> = turns
-                    .windows(3)
-                    .enumerate()
-                    .filter(|(_, t)| t[1] > 30.0 && t[1] > 2.0 * t[0].max(t[2]) + 3.0)
-                    .map(|(i, t)| (i + 1, [t[0], t[1], t[2]]))
-                    .collect();
-                if let Some(&first) = snaps.first() {
-                    found.push(format!("{preset:?} seed {seed} wind {w}: {first:?}"));
-                }
-            }
-        }
-    }
+    let spike = |t: &[f32]| t[1] > 30.0 && t[1] > 2.0 * t[0].max(t[2]) + 3.0;
+    let (found, falls) = first_in_every_fall(600, DT, spike);
     assert!(
         found.is_empty(),
         "{} of {falls} falls: {found:#?}",
@@ -584,6 +561,24 @@ fn no_step_turns_far_beyond_the_steps_around_it() {
 /// 16–20° a step to under 5° (24 falls).
 #[test]
 fn no_fall_jumps_or_stops_dead_when_watched_four_times_as_often() {
+    let jump = |t: &[f32]| t[1] > 10.0 && t[1] > 3.0 * t[0].max(t[2]) + 1.0;
+    let stop = |t: &[f32]| t[0] > 8.0 && t[1] > 8.0 && t[2] < 0.25 * t[1];
+    let (found, falls) = first_in_every_fall(2400, DT / 4.0, |t| jump(t) || stop(t));
+    assert!(
+        found.is_empty(),
+        "{} of {falls} falls: {found:#?}",
+        found.len()
+    );
+}
+
+/// Every preset, 48 seeds, in still air and in gusty wind, `steps` steps of `dt`: for each fall
+/// whose turns (degrees a step) have three in a row that `flagged` picks, the first of them, and
+/// how many falls there were.
+fn first_in_every_fall(
+    steps: usize,
+    dt: f32,
+    flagged: impl Fn(&[f32]) -> bool,
+) -> (Vec<String>, usize) {
     let model = FallModel::default();
     let wind = gusty_wind();
     let (mut found, mut falls) = (Vec::new(), 0);
@@ -594,14 +589,12 @@ fn no_fall_jumps_or_stops_dead_when_watched_four_times_as_often() {
                     seed,
                     ..preset.object()
                 };
-                let (turns, _) = changes_every(&object, &model, wind, 2400, false, DT / 4.0);
+                let (turns, _) = changes_every(&object, &model, wind, steps, false, dt);
                 falls += 1;
-                let jump = |t: &[f32]| t[1] > 10.0 && t[1] > 3.0 * t[0].max(t[2]) + 1.0;
-                let stop = |t: &[f32]| t[0] > 8.0 && t[1] > 8.0 && t[2] < 0.25 * t[1];
                 let first = turns
                     .windows(3)
                     .enumerate()
-                    .find(|(_, t)| jump(t) || stop(t))
+                    .find(|(_, t)| flagged(t))
                     .map(|(i, t)| (i + 1, [t[0], t[1], t[2]]));
                 if let Some(first) = first {
                     found.push(format!("{preset:?} seed {seed} wind {w}: {first:?}"));
@@ -609,9 +602,5 @@ fn no_fall_jumps_or_stops_dead_when_watched_four_times_as_often() {
             }
         }
     }
-    assert!(
-        found.is_empty(),
-        "{} of {falls} falls: {found:#?}",
-        found.len()
-    );
+    (found, falls)
 }
