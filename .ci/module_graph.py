@@ -16,8 +16,8 @@ import sys
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src")
 LAYERS = {
-    "error": 0, "guard": 0, "schedule": 0, "lifecycle": 0, "math": 0, "spectrum": 1, "wind": 2, "lod": 3,
-    "freefall": 4, "cloth": 4, "aero": 5, "render": 6, "inspector": 7, "plugins": 8,
+    "error": 0, "guard": 1, "schedule": 1, "lifecycle": 1, "math": 1, "spectrum": 2, "wind": 3, "lod": 4,
+    "freefall": 5, "cloth": 5, "aero": 6, "render": 7, "inspector": 8, "plugins": 9,
 }
 FACADES = {("aero",), ("cloth",), ("freefall",), ("wind",), ("spectrum",)}
 
@@ -35,7 +35,7 @@ def code_of(text):
     if cut >= 0:
         text = text[:cut]
     lines = [line for line in text.split("\n") if not line.strip().startswith("//")]
-    return re.sub(r'"(\\.|[^"\\])*"', '""', "\n".join(lines))
+    return re.sub(r'"(\\.|[^"\\])*"', '""', "\n".join(lines), flags=re.S)
 
 
 def main():

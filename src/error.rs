@@ -41,6 +41,18 @@ impl PartialEq for InvalidValue {
     }
 }
 
+/// A refusal's reason with its limits formatted from their constants (`reason!("must be ≤ {}",
+/// LeafCloud::MAX_LEAVES)`), made once on first use and kept for the program's life, so that
+/// [`InvalidValue::reason`] stays a `&'static str` and the error `Copy`: no limit is written twice.
+macro_rules! reason {
+    ($($format:tt)+) => {{
+        static REASON: std::sync::LazyLock<String> =
+            std::sync::LazyLock::new(|| format!($($format)+));
+        REASON.as_str()
+    }};
+}
+pub(crate) use reason;
+
 impl InvalidValue {
     /// The error naming `field`, its `value` and what it must be: the one way every domain's
     /// error is made (each domain's error converts from it with `?` or `.into()`).

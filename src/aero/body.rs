@@ -167,7 +167,7 @@ impl AeroBody {
             g.abs() <= MAX_GRAVITY,
             "gravity",
             g,
-            "must be finite and within ±1e4 m/s²",
+            crate::error::reason!("must be finite and within ±{MAX_GRAVITY:e} m/s²"),
         )?;
         state.validate()
     }

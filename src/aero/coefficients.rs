@@ -34,19 +34,22 @@ impl AeroCoefficients {
             (0.0..=Self::MAX_COEFFICIENT).contains(&self.drag),
             "drag",
             self.drag,
-            "must be within 0..1e3",
+            crate::error::reason!("must be within 0..{:e}", AeroCoefficients::MAX_COEFFICIENT),
         )?;
         InvalidValue::check(
             (0.0..=Self::MAX_COEFFICIENT).contains(&self.lift),
             "lift",
             self.lift,
-            "must be within 0..1e3",
+            crate::error::reason!("must be within 0..{:e}", AeroCoefficients::MAX_COEFFICIENT),
         )?;
         InvalidValue::check(
             self.density > 0.0 && self.density <= Self::MAX_FLUID_DENSITY,
             "density",
             self.density,
-            "must be > 0 and ≤ 1e5 kg/m³",
+            crate::error::reason!(
+                "must be > 0 and ≤ {:e} kg/m³",
+                AeroCoefficients::MAX_FLUID_DENSITY
+            ),
         )?;
         Ok(())
     }

@@ -193,13 +193,13 @@ impl ClothGrid {
             "grid.width",
             self.width,
             self.width > 0.0 && self.width <= ClothGrid::MAX_SIZE,
-            "must be > 0 and ≤ 1e4 m",
+            crate::error::reason!("must be > 0 and ≤ {:e} m", ClothGrid::MAX_SIZE),
         )?;
         finite(
             "grid.height",
             self.height,
             self.height >= 0.0 && self.height <= ClothGrid::MAX_SIZE,
-            "must be ≥ 0 and ≤ 1e4 m",
+            crate::error::reason!("must be ≥ 0 and ≤ {:e} m", ClothGrid::MAX_SIZE),
         )
     }
 }

@@ -1,8 +1,9 @@
 //! How a falling object is outlined (a maple, oak or birch leaf, an ovate leaf, an ellipse of
-//! paper, a coin, a card), from its [`FallPreset`] or, without one, from its [`Shape`], and the
-//! colours of a leaf without a preset: one source for the single objects' meshes
+//! paper, a coin, a card), from its [`Outline`] (its preset's, or ovate without one) and its
+//! [`Shape`], and the colours of a leaf without a preset: one source for the single objects' meshes
 //! ([`FallingObject::mesh`](super::FallingObject::mesh)), the leaf cloud's mesh and the
-//! examples. A preset's palette is [`FallPreset::palette`].
+//! examples. A preset's palette is
+//! [`FallPreset::palette`](super::FallPreset::palette).
 //!
 //! Hand-written: the outlines are polar functions chosen by eye (no crate draws leaves).
 
@@ -12,7 +13,6 @@ use bevy::color::Color;
 use bevy::math::Vec2;
 
 use super::model::body::Shape;
-use super::presets::FallPreset;
 
 /// Reds, oranges, yellows and browns: the look of a leaf without a preset.
 pub(crate) const AUTUMN: [Color; 5] = [
@@ -40,10 +40,9 @@ pub(crate) fn extent(shape: &Shape) -> (f32, f32) {
 }
 
 /// Rise of a leaf's edges per metre of half-width: leaves fold, paper, cards and coins do not.
-pub(crate) fn fold(look: Option<FallPreset>, shape: &Shape) -> f32 {
-    match (look, shape) {
-        (_, Shape::Disk { .. } | Shape::Rectangle { .. }) => 0.0,
-        (Some(FallPreset::PaperSheet | FallPreset::Coin | FallPreset::PlayingCard), _) => 0.0,
+pub(crate) fn fold(outline: Outline, shape: &Shape) -> f32 {
+    match (outline, shape) {
+        (_, Shape::Disk { .. } | Shape::Rectangle { .. }) | (Outline::Round, _) => 0.0,
         _ => 0.18,
     }
 }
@@ -51,8 +50,8 @@ pub(crate) fn fold(look: Option<FallPreset>, shape: &Shape) -> f32 {
 /// The outline as it would be drawn, and the point it is star-shaped about: `points` points from
 /// the tip (+Z) toward +X, so that a fan `(centre, p[i], p[i + 1])` faces +Y, scaled to the
 /// shape's width (X) and length (Z) about the middle of its bounding box. A disk or a rectangle
-/// keeps its own outline whatever the look says.
-pub(crate) fn outline(look: Option<FallPreset>, shape: &Shape, points: usize) -> (Vec2, Vec<Vec2>) {
+/// keeps its own outline whatever `kind` says.
+pub(crate) fn outline(kind: Outline, shape: &Shape, points: usize) -> (Vec2, Vec<Vec2>) {
     let (width, length) = extent(shape);
     let half = 0.5 * Vec2::new(width, length);
     let (centre, unit): (Vec2, Vec<Vec2>) = match shape {
@@ -69,8 +68,8 @@ pub(crate) fn outline(look: Option<FallPreset>, shape: &Shape, points: usize) ->
         }
         _ => {
             let kind = match shape {
-                Shape::Disk { .. } => Kind::Round,
-                _ => Kind::of(look),
+                Shape::Disk { .. } => Outline::Round,
+                _ => kind,
             };
             let raw: Vec<Vec2> = (0..points.max(3))
                 .map(|i| kind.point(TAU * i as f32 / points.max(3) as f32))
@@ -94,8 +93,8 @@ fn normalise(raw: Vec<Vec2>) -> (Vec2, Vec<Vec2>) {
 }
 
 /// The outline families.
-#[derive(Clone, Copy)]
-enum Kind {
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Outline {
     /// A disk or an ellipse of paper.
     Round,
     /// Ovate, pointed at the tip (the paper's leaf, a samara's wing).
@@ -108,19 +107,7 @@ enum Kind {
     Birch,
 }
 
-impl Kind {
-    fn of(look: Option<FallPreset>) -> Self {
-        match look {
-            Some(FallPreset::MapleLeaf) => Self::Maple,
-            Some(FallPreset::OakLeaf) => Self::Oak,
-            Some(FallPreset::BirchLeaf) => Self::Birch,
-            Some(FallPreset::Coin | FallPreset::PaperSheet | FallPreset::PlayingCard) => {
-                Self::Round
-            }
-            Some(FallPreset::Leaf | FallPreset::Samara) | None => Self::Ovate,
-        }
-    }
-
+impl Outline {
     /// The point at parameter `t` ∈ [0, 2π): 0 at the tip (+Z), π at the stalk, toward +X first.
     fn point(self, t: f32) -> Vec2 {
         // Ovate: x = sin t · w(t), z = cos t with w = ((1 − cos t)/2)^0.4: pointed at the tip,
@@ -160,7 +147,7 @@ pub(crate) fn mix(x: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::freefall::object::FallingObject;
+    use crate::freefall::object::{FallPreset, FallingObject};
     use bevy::mesh::Mesh;
 
     /// Every outline spans its shape exactly and winds so that the fan's faces point up (+Y),
@@ -175,7 +162,7 @@ mod tests {
             };
             let (width, length) = extent(&object.shape);
             for points in [CLOUD_POINTS, SINGLE_POINTS] {
-                let (centre, o) = outline(look, &object.shape, points);
+                let (centre, o) = outline(object.outline(), &object.shape, points);
                 let (lo, hi) = o.iter().fold((Vec2::MAX, Vec2::MIN), |(lo, hi), p| {
                     (lo.min(*p), hi.max(*p))
                 });

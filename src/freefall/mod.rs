@@ -37,7 +37,6 @@ mod look;
 mod model;
 mod object;
 mod plugin;
-mod presets;
 mod store;
 
 pub use cloud::{CloudRegion, LeafCloud, LeafCloudInvalid, LeafCloudPlugin, LeafCloudState};
@@ -60,9 +59,10 @@ pub use model::regime::{PrimitiveMotion, Regime};
 pub use model::release::FallRelease;
 pub use model::tilt::WindTilt;
 
-pub use object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
+pub use object::{
+    FallPreset, FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed,
+};
 pub use plugin::FallPlugin;
-pub use presets::FallPreset;
 pub use store::path::FallPath;
 pub use store::slot::StepOutcome;
 pub use store::view::FallView;

@@ -10,10 +10,9 @@ use bevy::transform::components::Transform;
 use super::fall_lod::FallLod;
 use super::fall_store::FallStore;
 use super::model::FallModel;
-use super::model::tilt::WindTilt;
 use super::object::{FallSettings, FallState, FallingObject, FallingObjectInvalid, Landed};
 use super::store::air::Air;
-use super::store::driver::Step;
+use super::store::step::Step;
 use crate::schedule::{SimulateSystems, WindfallSystems};
 use crate::wind::WindField;
 
@@ -36,7 +35,7 @@ impl Plugin for FallPlugin {
             .register_type::<FallSettings>()
             .register_type::<FallLod>()
             .register_type::<FallModel>()
-            .register_type::<super::presets::FallPreset>()
+            .register_type::<super::object::FallPreset>()
             .init_resource::<FallSettings>()
             .init_resource::<FallStore>()
             .add_message::<Landed>()
@@ -96,7 +95,6 @@ fn step_objects(
     let step = Step {
         model: &model,
         air: wind.map_or(Air::Still, Air::Field),
-        reference_speed: WindTilt::in_wind(0.0, wind).reference_speed,
         focus: crate::lod::focus(&foci),
         lanes: crate::math::lanes_enabled(),
         recycle_after: None,

@@ -351,7 +351,7 @@ fn drawn(leaves: usize) -> usize {
 /// origin, each a flat fan from its centre facing +Y, tagged with its index in UV set 1 and
 /// coloured from `look`.
 pub(crate) fn cloud_mesh(object: &FallingObject, count: u32, look: &LeafCloudLook) -> Mesh {
-    let (centre, corners) = outline(object.look, &object.shape, CLOUD_POINTS);
+    let (centre, corners) = outline(object.outline(), &object.shape, CLOUD_POINTS);
     let centre = Vec3::new(centre.x, 0.0, centre.y);
     let corners: Vec<Vec3> = corners.iter().map(|p| Vec3::new(p.x, 0.0, p.y)).collect();
     let n = corners.len() as u32;

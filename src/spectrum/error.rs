@@ -2,6 +2,13 @@
 
 use thiserror::Error;
 
+/// [`Synthesizer::MAX_AXES`](super::Synthesizer::MAX_AXES), here so that the error that quotes it
+/// needs no import of the synthesizer (which imports the error).
+pub(super) const MAX_AXES: usize = 4;
+
+/// [`Synthesizer::MAX_NODES`](super::Synthesizer::MAX_NODES), here for the same reason.
+pub(super) const MAX_NODES: usize = 1 << 26;
+
 /// Why a noise field could not be made.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum SpectrumError {
@@ -9,7 +16,7 @@ pub enum SpectrumError {
     #[error("`dims` is empty: a field needs at least one axis")]
     NoAxis,
     /// More axes than [`Synthesizer::MAX_AXES`](crate::spectrum::Synthesizer::MAX_AXES).
-    #[error("`dims` has {axes} axes, more than the limit of 4 (`Synthesizer::MAX_AXES`)")]
+    #[error("`dims` has {axes} axes, more than the limit of {max} (`Synthesizer::MAX_AXES`)", max = MAX_AXES)]
     TooManyAxes {
         /// How many were given.
         axes: usize,
@@ -27,7 +34,7 @@ pub enum SpectrumError {
     Beta(f32),
     /// More nodes than [`Synthesizer::MAX_NODES`](crate::spectrum::Synthesizer::MAX_NODES) (the product saturates at `usize::MAX`).
     #[error(
-        "`dims`: {nodes} nodes in all, more than the limit of 67108864 (`Synthesizer::MAX_NODES`)"
+        "`dims`: {nodes} nodes in all, more than the limit of {max} (`Synthesizer::MAX_NODES`)", max = MAX_NODES
     )]
     TooManyNodes {
         /// The product of `dims`, saturated.

@@ -254,7 +254,7 @@ impl Synthesizer {
     /// `2^n` alias images per bin, so without a bound a valid node count spread over many short
     /// axes (`[2; 26]`) would take 2^52 steps to tabulate; with it, the table costs at most 16 steps
     /// per node.
-    pub const MAX_AXES: usize = 4;
+    pub const MAX_AXES: usize = super::error::MAX_AXES;
 
     /// Grids above this many nodes (2^22: 256³ is above, 128³ below) are not kept: their tables
     /// (a quarter to an eighth of the grid, 4 bytes a bin) would stay for the process's life.
@@ -264,7 +264,7 @@ impl Synthesizer {
     /// anything is allocated; at the limit a field takes 512 MiB of spectrum while it is made and
     /// 256 MiB of output (twice that for a pair). Every grid derived from user input (wind fields,
     /// cloth noise) is bounded by it or by a smaller limit of its own.
-    pub const MAX_NODES: usize = 1 << 26;
+    pub const MAX_NODES: usize = super::error::MAX_NODES;
 }
 
 #[cfg(test)]

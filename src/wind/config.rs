@@ -156,7 +156,10 @@ impl WindConfig {
             u.is_finite() && (0.0..=Self::MAX_REFERENCE_SPEED).contains(&u),
             "reference_speed",
             u,
-            "must be finite, ≥ 0 and ≤ 1e4 m/s",
+            crate::error::reason!(
+                "must be finite, ≥ 0 and ≤ {:e} m/s",
+                WindConfig::MAX_REFERENCE_SPEED
+            ),
         )?;
         let d = self.direction;
         InvalidValue::check(
@@ -176,7 +179,10 @@ impl WindConfig {
                 i.is_finite() && (0.0..=Self::MAX_TURBULENCE_INTENSITY).contains(&i),
                 "turbulence_intensity",
                 i,
-                "must be finite, ≥ 0 and ≤ 10",
+                crate::error::reason!(
+                    "must be finite, ≥ 0 and ≤ {}",
+                    WindConfig::MAX_TURBULENCE_INTENSITY
+                ),
             )?;
         }
         check_axis("grid.x", self.grid[0])?;

@@ -66,7 +66,10 @@ impl WindEasing {
                 && (0.0..=WindConfig::MAX_REFERENCE_SPEED).contains(&saved.from_speed),
             "easing.from_speed",
             saved.from_speed,
-            "must be finite, ≥ 0 and ≤ 1e4 m/s",
+            crate::error::reason!(
+                "must be finite, ≥ 0 and ≤ {:e} m/s",
+                WindConfig::MAX_REFERENCE_SPEED
+            ),
         )?;
         self.time_constant = saved.time_constant;
         let unit = (saved.from_direction.length_squared() - 1.0).abs() < 1e-3;

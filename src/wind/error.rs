@@ -21,7 +21,7 @@ pub enum WindError {
     },
     /// More nodes than [`WindConfig::MAX_NODES`](crate::wind::WindConfig::MAX_NODES).
     #[error(
-        "`{field}`: {nodes} nodes in all, more than the limit of 67108864 (`WindConfig::MAX_NODES`)"
+        "`{field}`: {nodes} nodes in all, more than the limit of {max} (`WindConfig::MAX_NODES`)", max = crate::spectrum::Synthesizer::MAX_NODES
     )]
     TooManyNodes {
         /// The field's name.

@@ -46,8 +46,11 @@ pub(super) fn world_place(entity: Entity, hierarchy: &Hierarchy) -> Result<Place
         WindError::from(InvalidValue::new(
             "transform",
             value,
-            "must place it at a finite point within ±MAX_COORDINATE (1e7 m), turned by a finite \
-             rotation",
+            crate::error::reason!(
+                "must place it at a finite point within ±MAX_COORDINATE ({:e} m), turned by a \
+                 finite rotation",
+                crate::guard::MAX_COORDINATE
+            ),
         ))
     };
     let (mut affine, mut rotation) = (Affine3A::IDENTITY, Quat::IDENTITY);

@@ -61,7 +61,7 @@ impl Pulse {
             f.is_finite() && (0.0..=Pulse::MAX_FREQUENCY).contains(&f),
             "pulse.frequency",
             f,
-            "must lie in [0, 100] Hz",
+            crate::error::reason!("must lie in [0, {}] Hz", Pulse::MAX_FREQUENCY),
         )?;
         Ok(())
     }

@@ -175,7 +175,9 @@ impl ParticleCloth {
             (MIN_NODE_MASS..=MAX_NODE_MASS).contains(&node_mass),
             "areal_density",
             areal_density,
-            "each node's mass (areal_density × width × height / nodes) must be within 1e-5..1e9 kg",
+            crate::error::reason!(
+                "each node's mass (areal_density × width × height / nodes) must be within {MIN_NODE_MASS:e}..{MAX_NODE_MASS:e} kg"
+            ),
         )?;
         let node_mass = node_mass as f32;
         let (dx, dy) = (grid.segment(), grid.row_spacing());

@@ -66,7 +66,7 @@ impl PlateState {
                 false,
                 "state.position",
                 value,
-                crate::guard::POSITION_REASON,
+                crate::guard::position_reason(),
             )?;
         }
         InvalidValue::check(
@@ -84,7 +84,7 @@ impl PlateState {
                 largest.abs() <= PlateState::MAX_SPEED,
                 field,
                 largest,
-                "must be finite and within ±1e6",
+                crate::error::reason!("must be finite and within ±{:e}", PlateState::MAX_SPEED),
             )?;
         }
         Ok(())
@@ -114,7 +114,11 @@ impl RigidPlate {
                 (Shape::MIN_SIZE..=Shape::MAX_SIZE).contains(&value) && value.is_finite(),
                 field,
                 value,
-                "must be within 1e-7..1e3 m",
+                crate::error::reason!(
+                    "must be within {:e}..{:e} m",
+                    Shape::MIN_SIZE,
+                    Shape::MAX_SIZE
+                ),
             )?;
         }
         InvalidValue::check(

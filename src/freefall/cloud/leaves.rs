@@ -8,7 +8,6 @@ use bevy::math::Vec3;
 use bevy::tasks::TaskPool;
 
 use super::CloudRegion;
-use crate::freefall::model::tilt::WindTilt;
 use crate::freefall::model::{
     FallModel, markov::BoundedChain, motion::FallScales, random::FallRng, release::FallRelease,
 };
@@ -16,8 +15,8 @@ use crate::freefall::store::Store;
 use crate::freefall::store::air::Air;
 use crate::freefall::store::block::{FallConstants, Shared};
 use crate::freefall::store::cold::FallStart;
-use crate::freefall::store::driver::Step;
 use crate::freefall::store::path::FallPath;
+use crate::freefall::store::step::Step;
 use crate::freefall::store::view::FallView;
 use crate::lod::{Focus, LodTiers};
 use crate::math::geometry::{Q, V3};
@@ -48,7 +47,7 @@ pub struct CloudStep<'a> {
     /// The fixed step, s.
     pub dt: f32,
     /// W, the largest angle the wind turns a leaf by (eq. 15), rad; the wind's reference speed
-    /// is read from `wind` ([`WindTilt::in_wind`]).
+    /// is `wind`'s own (1 m/s in still air, where nothing tilts).
     pub wind_tilt: f32,
     /// Where the levels of detail are measured from (the camera, and what it sees);
     /// `None`: every leaf at full detail.
@@ -80,7 +79,7 @@ impl CloudLeaves {
         model: &FallModel,
         scales: FallScales,
         chain: Arc<BoundedChain>,
-        count: usize,
+        count: u32,
         seed: u64,
         region: CloudRegion,
         ground: f32,
@@ -100,7 +99,7 @@ impl CloudLeaves {
             recycle_after,
         };
         for index in 0..count {
-            let start = cloud.start(index as u32, 0, false);
+            let start = cloud.start(index, 0, false);
             cloud.store.insert(model, &start);
         }
         cloud
@@ -147,7 +146,6 @@ impl CloudLeaves {
         let driver = Step {
             model: step.model,
             air: step.wind.map_or(Air::Still, Air::Field),
-            reference_speed: WindTilt::in_wind(step.wind_tilt, step.wind).reference_speed,
             focus: step.focus,
             lanes: crate::math::lanes_enabled(),
             recycle_after: self.recycle_after,

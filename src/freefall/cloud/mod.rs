@@ -151,7 +151,7 @@ impl LeafCloud {
             self.count <= LeafCloud::MAX_LEAVES,
             "count",
             self.count as f32,
-            "must be ≤ 4 000 000",
+            crate::error::reason!("must be ≤ {}", LeafCloud::MAX_LEAVES),
         )?;
         let within = |c: f32| c.abs() <= crate::guard::MAX_COORDINATE;
         let (min, max) = (self.region.min, self.region.max);
@@ -191,7 +191,7 @@ impl LeafCloud {
             model,
             self.object.scales(&regime),
             chain,
-            self.count as usize,
+            self.count,
             self.seed ^ self.object.seed.rotate_left(32),
             self.region,
             ground,

@@ -203,7 +203,11 @@ impl Regime {
         for (name, value) in names.iter().zip([l, a, b]) {
             positive(name, value, Shape::MAX_SIZE)?;
             if value < Shape::MIN_SIZE {
-                return Err(invalid(name, value, "must be ≥ 1e-7 m"));
+                return Err(invalid(
+                    name,
+                    value,
+                    crate::error::reason!("must be ≥ {:e} m", Shape::MIN_SIZE),
+                ));
             }
         }
         if b > a {
@@ -232,7 +236,7 @@ impl Regime {
             return Err(invalid(
                 "fluid.kinematic_viscosity",
                 fluid.kinematic_viscosity,
-                "must be ≥ 1e-9 m²/s",
+                crate::error::reason!("must be ≥ {:e} m²/s", Fluid::MIN_VISCOSITY),
             ));
         }
         positive("gravity", gravity, 1.0e4)?;
@@ -245,7 +249,11 @@ impl Regime {
             });
         }
         if ratio > f64::from(Fluid::MAX_DENSITY_RATIO) {
-            return Err(invalid("density", density, "ρ_s/ρ_f must be ≤ 1e6"));
+            return Err(invalid(
+                "density",
+                density,
+                crate::error::reason!("ρ_s/ρ_f must be ≤ {:e}", Fluid::MAX_DENSITY_RATIO),
+            ));
         }
         let (l, a, b) = (f64::from(l), f64::from(a), f64::from(b));
         let pi = std::f64::consts::PI;

@@ -49,7 +49,7 @@ impl FallRelease {
                 false,
                 "release.position",
                 value,
-                crate::guard::POSITION_REASON,
+                crate::guard::position_reason(),
             )?;
         }
         check_ground(self.ground, true)?;
@@ -66,7 +66,10 @@ impl FallRelease {
             speed.abs() <= FallRelease::MAX_SPEED,
             "release.velocity",
             speed,
-            "must be finite and within ±1e4 m/s",
+            crate::error::reason!(
+                "must be finite and within ±{:e} m/s",
+                FallRelease::MAX_SPEED
+            ),
         )?;
         Ok(())
     }
@@ -100,9 +103,9 @@ pub(crate) fn check_ground(ground: f32, endless: bool) -> Result<(), FallError> 
         return Ok(());
     }
     let reason = if endless {
-        crate::guard::GROUND_REASON
+        crate::guard::ground_reason()
     } else {
-        crate::guard::POSITION_REASON
+        crate::guard::position_reason()
     };
     Err(InvalidValue::new("release.ground", ground, reason).into())
 }

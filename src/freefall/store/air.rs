@@ -16,8 +16,21 @@ pub(crate) enum Air<'a> {
     Still,
     /// The wind field, read where each fall is at its own clock.
     Field(&'a WindField),
-    /// The same velocity everywhere, m/s.
-    Uniform(Vec3),
+    /// The same velocity everywhere, m/s, and the reference speed of eq. 15 the tilt is
+    /// measured against (a field's is its own).
+    Uniform(Vec3, f32),
+}
+
+impl Air<'_> {
+    /// Eq. 15's U_ref, m/s: the field's reference speed, a uniform air's own, 1 m/s in still
+    /// air (where nothing tilts).
+    pub(crate) fn reference_speed(&self) -> f32 {
+        match *self {
+            Air::Still => 1.0,
+            Air::Field(field) => field.config().reference_speed,
+            Air::Uniform(_, reference_speed) => reference_speed,
+        }
+    }
 }
 
 /// The air of one step, with what its reads share.
@@ -36,7 +49,7 @@ impl<'a> Reading<'a> {
     pub(super) fn of(air: Air<'a>) -> Self {
         match air {
             Air::Field(field) => Reading::Field(field, field.moment(field.time_f64())),
-            Air::Uniform(u) => {
+            Air::Uniform(u, _) => {
                 Reading::Uniform(clamp_speed(V3::of(u), FallRelease::MAX_SPEED).vec3())
             }
             Air::Still => Reading::Still,

@@ -18,33 +18,17 @@ use wide::f32x4;
 /// A block's lanes.
 type Lanes = f32x4;
 
-use super::air::{Air, Reading};
+use super::air::Reading;
 use super::block::{Block, Constants, W};
 use super::cold::Cold;
 use super::kernel;
 use super::slot::{Part, Slot, StepOutcome};
+use super::step::Step;
 use super::{Store, band_of, due_bands};
 use crate::freefall::fall_lod::FallClock;
-use crate::freefall::model::FallModel;
 use crate::freefall::model::release::FallRelease;
-use crate::lod::Focus;
 use crate::math::geometry::{Q, V3};
 use crate::math::lane::Lane;
-
-/// Everything one step reads.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Step<'a> {
-    pub model: &'a FallModel,
-    pub air: Air<'a>,
-    /// Eq. 15's U_ref, m/s.
-    pub reference_speed: f32,
-    /// Where levels of detail are measured from (`None`: every fall at full detail).
-    pub focus: Option<Focus>,
-    /// Whether falls go several at a time in SIMD lanes (the same bits either way).
-    pub lanes: bool,
-    /// Falls resting this long, s, are reported ([`StepReport::recycle`]).
-    pub recycle_after: Option<f32>,
-}
 
 /// What one step did.
 #[derive(Clone, Debug, Default)]
@@ -210,7 +194,7 @@ fn step_block<K: Constants>(
             let wind = air.lanes::<f32, K>(block, j).vec3();
             let mut slot = Slot { block, k: j, cold };
             let before = slot.easing_before(clock, waited[j]);
-            outcomes[j] = slot.advance(kind, step.model, waited[j], wind, step.reference_speed);
+            outcomes[j] = slot.advance(kind, step, waited[j], wind);
             slot.easing_after(before, clock);
             alone[j] = true;
         }
@@ -342,7 +326,7 @@ fn step_lanes<K: Constants>(
         let mut slot = Slot { block, k: j, cold };
         alone[j] = true;
         easings[j] = Some(slot.easing_before(clock, waited[j]));
-        match slot.prepare(kind, step.model, waited[j], w, step.reference_speed) {
+        match slot.prepare(kind, step, waited[j], w) {
             Part::Done(outcome) => outcomes[j] = outcome,
             Part::Move { delta, tilt } => moves[j] = Some((delta, tilt)),
         }
@@ -390,7 +374,7 @@ fn step_lanes<K: Constants>(
             tilt,
             dt,
             wind,
-            L::splat(step.reference_speed),
+            L::splat(step.air.reference_speed()),
         );
         for (j, outcome) in outcomes.iter_mut().enumerate().take(live) {
             if L::mask_get(moving, j) {

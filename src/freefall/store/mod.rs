@@ -30,6 +30,7 @@ pub(crate) mod kernel;
 pub(crate) mod path;
 pub(crate) mod pose;
 pub(crate) mod slot;
+pub(crate) mod step;
 pub(crate) mod view;
 
 use std::cmp::Reverse;

@@ -9,8 +9,8 @@ use super::Store;
 use super::air::Air;
 use super::block::{FallConstants, Shared};
 use super::cold::FallStart;
-use super::driver::Step;
 use super::slot::StepOutcome;
+use super::step::Step;
 use super::view::FallView;
 use crate::freefall::model::FallModel;
 use crate::freefall::model::error::FallError;
@@ -122,8 +122,7 @@ impl FallPath {
         self.store.kind.0.max_angle = tilt.max_angle;
         let step = Step {
             model,
-            air: Air::Uniform(wind),
-            reference_speed: tilt.reference_speed,
+            air: Air::Uniform(wind, tilt.reference_speed),
             focus: None,
             lanes: crate::math::lanes_enabled(),
             recycle_after: None,

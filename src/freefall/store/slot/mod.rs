@@ -12,6 +12,7 @@ use super::block::{Block, Constants};
 use super::cold::{Blend, Cold, Easing, smoothstep};
 use super::kernel::{self, Motion, commit, fall_on, motion, orient, sample_piece, turned, yaw};
 use super::pose::{LeafPose, shown, smoothed};
+use super::step::Step;
 use crate::freefall::fall_lod::FallClock;
 use crate::freefall::model::FallModel;
 use crate::freefall::model::piece::Piece;
@@ -117,15 +118,8 @@ impl<K: Constants> Slot<'_, K> {
     /// pieces as the step crosses, and the orientation with eq. 15's tilt. A resting fall
     /// settles, or is lifted by a strong enough wind. ([`Slot::prepare`], then the move the
     /// lanes finish, one lane wide.)
-    pub fn advance(
-        &mut self,
-        kind: &K,
-        model: &FallModel,
-        dt: f32,
-        wind: Vec3,
-        reference_speed: f32,
-    ) -> StepOutcome {
-        match self.prepare(kind, model, dt, wind, reference_speed) {
+    pub fn advance(&mut self, kind: &K, step: &Step, dt: f32, wind: Vec3) -> StepOutcome {
+        match self.prepare(kind, step, dt, wind) {
             Part::Done(outcome) => outcome,
             Part::Move { delta, tilt } => {
                 let k = self.k;
@@ -143,7 +137,7 @@ impl<K: Constants> Slot<'_, K> {
                     tilt,
                     dt,
                     V3::of(wind),
-                    reference_speed,
+                    step.air.reference_speed(),
                 );
                 if landed {
                     StepOutcome::Landed
@@ -159,15 +153,8 @@ impl<K: Constants> Slot<'_, K> {
     /// swing search), blended from the last motion's; a fall whose release orientation is still
     /// fading is stepped whole. What is left, the move and the orientation of [`Part::Move`],
     /// the lanes finish ([`kernel::finish`]) for many falls at once.
-    pub fn prepare(
-        &mut self,
-        kind: &K,
-        model: &FallModel,
-        dt: f32,
-        wind: Vec3,
-        reference_speed: f32,
-    ) -> Part {
-        let k = self.k;
+    pub fn prepare(&mut self, kind: &K, step: &Step, dt: f32, wind: Vec3) -> Part {
+        let (k, model) = (self.k, step.model);
         if self.landed() {
             let c = kind.get(&self.block.consts, k);
             if kernel::lifts::<f32>(V3::of(wind), c.descent_speed) {
@@ -204,7 +191,7 @@ impl<K: Constants> Slot<'_, K> {
         let c = kind.load::<f32>(&self.block.consts, k);
         let mut m: Motion<f32> = motion(&self.block.hot, k);
         let landed = fall_on(&mut m, &c, V3::of(delta), dt, V3::of(wind));
-        let orientation = self.fading(c.max_angle, reference_speed, wind, tilt, dt);
+        let orientation = self.fading(c.max_angle, step.air.reference_speed(), wind, tilt, dt);
         let h = &mut self.block.hot;
         let (t, offset) = (h.t[k], V3::new(h.ox[k], h.oy[k], h.oz[k]));
         commit::<f32>(h, k, true, &m, orientation, t, offset, landed);
