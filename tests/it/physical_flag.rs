@@ -128,12 +128,17 @@ static RUNS: LazyLock<Vec<Run>> = LazyLock::new(|| {
 
 /// Each (rows, speed, tick) case run over [`WINDOW`] after [`SETTLE`], in parallel.
 fn runs(cases: &[(usize, f32, f32)]) -> Vec<Run> {
+    runs_over(cases, WINDOW)
+}
+
+/// Each (rows, speed, tick) case run over `window` seconds after [`SETTLE`], in parallel.
+fn runs_over(cases: &[(usize, f32, f32)], window: f32) -> Vec<Run> {
     std::thread::scope(|scope| {
         let handles: Vec<_> = cases
             .iter()
             .map(|&(rows, speed, tick)| {
                 scope.spawn(move || {
-                    run_ticked(rows, speed, 1.0 / 50.0, GRAVITY, (SETTLE, WINDOW), tick)
+                    run_ticked(rows, speed, 1.0 / 50.0, GRAVITY, (SETTLE, window), tick)
                 })
             })
             .collect();
@@ -340,7 +345,8 @@ fn its_motion_is_the_same_on_any_grid_and_tick() {
     // 24 and 32 rows against 48 at 8 and 12 m/s (60 s; any frame rate of 50–200 a second moves
     // it through the same ticks and to the same place: `frames_are_cut_into_whole_ticks`):
     // frequency within 5 %, swing and drag within 15 %; ticks of 2 ms against 1 ms at 24 rows:
-    // frequency and drag within 5 % (the swing: `ticks_give_the_same_flag`, ignored).
+    // frequency and drag within 5 % (the swing over 180 s: `ticks_give_the_same_flag`, ignored for
+    // its three minutes; met at 2 ms).
     for speed in [8.0, 12.0] {
         for rows in [24, 32] {
             let label = format!("{speed} m/s, {rows} rows against 48");
@@ -458,24 +464,35 @@ fn the_finest_yarns_hold_for_ten_seconds() {
 }
 
 /// The bound for the tick: ticks of 2 and 4 ms give the same frequency, swing and drag
-/// as 1 ms ticks within 5 % at 24 rows in 8 and 12 m/s (60 s). Measured: frequency and drag
-/// within 5 % at 2 ms (tested in `its_motion_is_the_same_on_any_grid_and_tick`), the swing 6.1 %
-/// off at 8 m/s; at 4 ms the swing 9.5 % off at 8 m/s. A single 60 s window of a chaotic flag moves
-/// its swing by several per cent: averaging over several starts would tell the tick's share.
+/// as 1 ms ticks within 5 % at 24 rows in 8 and 12 m/s. A single 60 s window of a chaotic flag
+/// moves its swing by several per cent, so each case here is watched for three windows (180 s).
+/// Measured over 180 s: 2 ms ticks within 5 % on all three (swing +3.5 % at 8 m/s, +2.7 % at
+/// 12 m/s; frequency −0.4 % / −0.2 %, drag +0.3 % / −1.9 %); 4 ms ticks swing +6.2 % and +7.5 %
+/// (frequency −1.0 % / −0.9 %, drag within 0.2 %). Three minutes on two cores: run by hand.
 #[test]
-#[ignore = "not met: the swing with ticks of 2 ms is 6.1 % off 1 ms ticks at 8 m/s (bound 5 %)"]
+#[ignore = "not met at 4 ms: swing +6.2 % (8 m/s) and +7.5 % (12 m/s) off 1 ms over 180 s; 2 ms met"]
 fn ticks_give_the_same_flag() {
-    let longer = runs(&[(24, 8.0, 4e-3), (24, 12.0, 4e-3)]);
-    let defaults = [find(24, 8.0), find(24, 12.0)];
-    for long in longer.iter().chain(defaults) {
+    let cases: Vec<_> = [8.0, 12.0]
+        .into_iter()
+        .flat_map(|speed| [1e-3, 2e-3, 4e-3].map(|tick| (24, speed, tick)))
+        .collect();
+    let all = runs_over(&cases, 3.0 * WINDOW);
+    let mut failures = Vec::new();
+    for long in all.iter().filter(|r| r.tick > 1e-3) {
+        let short = all
+            .iter()
+            .find(|r| r.tick == 1e-3 && r.speed == long.speed)
+            .unwrap();
         let label = format!(
             "{} m/s, ticks of {:.0} ms against 1 ms",
             long.speed,
             long.tick * 1e3
         );
-        let ([f, swing, drag], report) = compare(&label, short_ticks(long.speed), long);
-        assert!(f <= 0.05, "{report}");
-        assert!(swing <= 0.05, "{report}");
-        assert!(drag <= 0.05, "{report}");
+        let ([f, swing, drag], report) = compare(&label, short, long);
+        println!("{report}");
+        if f > 0.05 || swing > 0.05 || drag > 0.05 {
+            failures.push(report);
+        }
     }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
