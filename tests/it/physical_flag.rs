@@ -496,3 +496,61 @@ fn ticks_give_the_same_flag() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The lift slope of the flag's sheet held flat and yawed a few degrees to the wind, in
+/// 1/rad of C_L = lift / (½ ρ U² S): nodes a million times heavier than the flag's, no gravity,
+/// one tick from rest, so the sheet does not move while the air pushes it.
+fn yawed_lift_slope(rows: usize, yaw: f32) -> f32 {
+    let grid = ClothGrid {
+        rows,
+        columns: (rows * 3).div_ceil(2),
+        width: WIDTH,
+        height: HEIGHT,
+    };
+    let coefficients = AeroCoefficients::default();
+    let mut sheet =
+        ParticleCloth::new(grid, AREAL_DENSITY * 1e6, coefficients, Pinning::PoleColumn).unwrap();
+    let speed = 8.0;
+    // The wind along the yarns (from the pole), turned by `yaw` through the sheet (normal +Z).
+    let wind = speed * Vec3::new(yaw.cos(), 0.0, yaw.sin());
+    sheet.step(sheet.tick, Vec3::ZERO, &|_| wind);
+    let moved = sheet
+        .positions()
+        .iter()
+        .zip(flag(rows).positions())
+        .map(|(a, b)| a.distance(*b))
+        .fold(0.0, f32::max);
+    assert!(moved < 1e-4 * WIDTH, "the held sheet moved {moved} m");
+    let lift_direction = Vec3::new(-yaw.sin(), 0.0, yaw.cos());
+    let lift = sheet.aerodynamic_force().dot(lift_direction);
+    lift / (0.5 * coefficients.density * speed * speed * WIDTH * HEIGHT) / yaw
+}
+
+/// A flat sheet yawed to the wind: its lift slope within 15 % of Jones' slender wing,
+/// C_Lα = (π/2) AR, AR = span² / area = H / W (the span H across the wind, the chord W along
+/// it), on two grids and at two small angles.
+///
+/// Measured: C_Lα 0.59–0.66 /rad against Jones' 1.047 (0.57–0.63 of it; 24 rows 0.626 and
+/// 0.661 at 2° and 4°, 48 rows 0.592 and 0.627). The face law's normal force, C_L sin α with
+/// C_L = 1, spread by the pressure's filter that falls to zero past the side edges, loses about
+/// 40 %; slender-body theory puts the lift at the leading edge, where the air's added mass
+/// π ρ H² / 4 per length starts (the reactive force of #52 would give Jones' slope by itself).
+#[test]
+#[ignore = "not met: C_L slope 0.57-0.63 of Jones' (pi/2) AR on 24 and 48 rows at 2 and 4 degrees"]
+fn a_yawed_sheet_lifts_as_a_slender_wing() {
+    let jones = std::f32::consts::FRAC_PI_2 * HEIGHT / WIDTH;
+    let mut report = Vec::new();
+    let mut worst = 0.0f32;
+    for rows in [24, 48] {
+        for degrees in [2.0f32, 4.0] {
+            let slope = yawed_lift_slope(rows, degrees.to_radians());
+            worst = worst.max((slope / jones - 1.0).abs());
+            report.push(format!(
+                "{rows} rows, {degrees}°: C_Lα {slope:.3} /rad, {:.2} of Jones' {jones:.3}",
+                slope / jones
+            ));
+        }
+    }
+    println!("{}", report.join("\n"));
+    assert!(worst <= 0.15, "{}", report.join("\n"));
+}
