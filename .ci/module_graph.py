@@ -16,7 +16,7 @@ import sys
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src")
 LAYERS = {
-    "error": 0, "guard": 1, "schedule": 1, "lifecycle": 1, "math": 1, "spectrum": 2, "wind": 3, "lod": 4,
+    "error": 0, "guard": 1, "schedule": 1, "lifecycle": 1, "portable": 1, "spectrum": 2, "wind": 3, "lod": 4,
     "freefall": 5, "cloth": 5, "aero": 6, "render": 7, "inspector": 8, "plugins": 9,
 }
 FACADES = {("aero",), ("cloth",), ("freefall",), ("wind",), ("spectrum",)}

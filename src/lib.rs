@@ -280,11 +280,11 @@ mod guard;
 pub mod inspector;
 mod lifecycle;
 pub mod lod;
-mod math;
+mod portable;
 #[cfg(feature = "render")]
 pub mod render;
 #[doc(hidden)]
-pub use math::set_lanes;
+pub use portable::set_lanes;
 mod plugins;
 pub mod schedule;
 pub mod spectrum;

@@ -1,6 +1,5 @@
-//! Levels of detail for falls: [`FallLod`] for a single falling object, and the clock the tiers
-//! of objects and of a cloud's leaves run on ([`FallClock`]). The store keeps falls of each
-//! tier together (`freefall::store`).
+//! Levels of detail for a single falling object: [`FallLod`]. The store keeps falls of each tier
+//! together and runs them on its clock (`freefall::store`, `store/clock.rs`).
 //!
 //! A fall in tier n (see [`LodTiers`](crate::lod::LodTiers)) is advanced every n-th fixed step
 //! over the whole time since its last step, so it follows the same path (pieces are sampled by
@@ -52,30 +51,5 @@ pub struct FallLod(pub LodTiers);
 impl crate::lod::HasLodTiers for FallLod {
     fn tiers(&self) -> LodTiers {
         self.0
-    }
-}
-
-/// The clock a fall store's tiers run on: seconds and fixed steps since it started, and the
-/// last step's length.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct FallClock {
-    pub seconds: f64,
-    pub steps: u64,
-    pub last_dt: f32,
-}
-
-impl FallClock {
-    /// One more fixed step of `dt` seconds.
-    pub fn tick(&mut self, dt: f32) {
-        self.seconds += f64::from(dt);
-        self.steps += 1;
-        self.last_dt = dt;
-    }
-
-    /// Fixed steps from this one to the next on which an object of `tier` with index `index`
-    /// is due (1 to `tier`).
-    pub fn steps_to_next(&self, tier: u32, index: u32) -> u32 {
-        let tier = tier.max(1);
-        tier - ((self.steps + u64::from(index)) & u64::from(tier - 1)) as u32
     }
 }

@@ -6,7 +6,7 @@ use bevy::ecs::prelude::*;
 
 use super::model::FallModel;
 use super::store::Store;
-use super::store::block::{Constants, FallConstants, PerFall};
+use super::store::block::{ConstantStorage, FallConstants, PerFallConstants};
 use super::store::cold::FallStart;
 use super::store::pose::LeafPose;
 use super::store::view::FallView;
@@ -36,7 +36,7 @@ use crate::lod::LodTiers;
 /// ```
 #[derive(Resource, Clone, Debug)]
 pub struct FallStore {
-    pub(crate) store: Store<PerFall>,
+    pub(crate) falls: Store<PerFallConstants>,
     /// The entity of each handle.
     entities: Vec<Option<Entity>>,
     handles: EntityHashMap<u32>,
@@ -47,7 +47,7 @@ pub struct FallStore {
 impl Default for FallStore {
     fn default() -> Self {
         Self {
-            store: Store::new(PerFall),
+            falls: Store::new(PerFallConstants),
             entities: Vec::new(),
             handles: EntityHashMap::default(),
             poses: Vec::new(),
@@ -58,39 +58,39 @@ impl Default for FallStore {
 impl FallStore {
     /// `entity`'s fall, if it has one.
     pub fn fall(&self, entity: Entity) -> Option<FallView<'_>> {
-        self.store.view(*self.handles.get(&entity)?)
+        self.falls.view(*self.handles.get(&entity)?)
     }
 
     /// How many objects fall (or rest).
     pub fn len(&self) -> usize {
-        self.store.len()
+        self.falls.len()
     }
 
     /// True with no falling object.
     pub fn is_empty(&self) -> bool {
-        self.store.len() == 0
+        self.falls.len() == 0
     }
 
     /// Every object's fall, with its entity.
     pub fn falls(&self) -> impl Iterator<Item = (Entity, FallView<'_>)> {
         self.handles
             .iter()
-            .filter_map(|(&e, &h)| Some((e, self.store.view(h)?)))
+            .filter_map(|(&e, &h)| Some((e, self.falls.view(h)?)))
     }
 
     /// Bytes the falls take.
     pub fn memory_bytes(&self) -> usize {
-        self.store.memory_bytes()
+        self.falls.memory_bytes()
     }
 
     /// Lets `entity`'s fall go as `start` says (again, in its slot, if it had one); returns
     /// its handle.
     pub(crate) fn set_up(&mut self, entity: Entity, model: &FallModel, start: &FallStart) -> u32 {
         if let Some(&handle) = self.handles.get(&entity) {
-            self.store.replace(handle, model, start);
+            self.falls.replace(handle, model, start);
             return handle;
         }
-        let handle = self.store.insert(model, start);
+        let handle = self.falls.insert(model, start);
         let h = handle as usize;
         if self.entities.len() <= h {
             self.entities.resize(h + 1, None);
@@ -103,7 +103,7 @@ impl FallStore {
     /// Removes `entity`'s fall.
     pub(crate) fn remove(&mut self, entity: Entity) {
         if let Some(handle) = self.handles.remove(&entity) {
-            self.store.remove(handle);
+            self.falls.remove(handle);
             self.entities[handle as usize] = None;
         }
     }
@@ -118,10 +118,10 @@ impl FallStore {
         let Some(&handle) = self.handles.get(&entity) else {
             return;
         };
-        let kind = self.store.kind;
-        if let Some(slot) = self.store.slot(handle) {
+        let kind = self.falls.kind;
+        if let Some(slot) = self.falls.slot(handle) {
             let c = kind.get(&slot.block.consts, slot.k);
-            PerFall::set(&mut slot.block.consts, slot.k, &FallConstants { lod, ..c });
+            PerFallConstants::set(&mut slot.block.consts, slot.k, &FallConstants { lod, ..c });
         }
     }
 }

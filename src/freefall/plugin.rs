@@ -96,17 +96,17 @@ fn step_objects(
         model: &model,
         air: wind.map_or(Air::Still, Air::Field),
         focus: crate::lod::focus(&foci),
-        lanes: crate::math::lanes_enabled(),
+        lanes: crate::portable::lanes_enabled(),
         recycle_after: None,
     };
     let pool = ComputeTaskPool::try_get().map(|p| &**p);
     let store = &mut *store;
-    let report = store.store.step(time.delta_secs(), &step, pool);
+    let report = store.falls.step(time.delta_secs(), &step, pool);
     let mut landings: Vec<Landed> = report
         .landed
         .iter()
         .filter_map(|&h| {
-            let fall = store.store.view(h)?;
+            let fall = store.falls.view(h)?;
             Some(Landed {
                 entity: store.entity(h)?,
                 position: fall.position(),
@@ -116,7 +116,7 @@ fn step_objects(
         .collect();
     landings.sort_by_key(|l| l.entity);
     for &handle in report.changed.iter().chain(&report.landed) {
-        let (Some(entity), Some(fall)) = (store.entity(handle), store.store.view(handle)) else {
+        let (Some(entity), Some(fall)) = (store.entity(handle), store.falls.view(handle)) else {
             continue;
         };
         if let Ok(mut state) = states.get_mut(entity) {
@@ -164,10 +164,10 @@ fn pose_objects(
 ) {
     let s = crate::schedule::overstep(schedule.as_deref(), time.as_deref());
     let store = &mut *store;
-    let clock = store.store.clock;
+    let clock = store.falls.clock;
     let now = clock.seconds + f64::from(s * clock.last_dt);
     let pool = ComputeTaskPool::try_get().map(|p| &**p);
-    store.store.poses(now, pool, &mut store.poses);
+    store.falls.poses(now, pool, &mut store.poses);
     let poses = &store.poses;
     objects.par_iter_mut().for_each(|(state, mut transform)| {
         if let Some(pose) = state.handle.and_then(|h| poses.get(h as usize)) {

@@ -145,7 +145,7 @@ impl WindConfig {
         InvalidValue::check(
             h.is_finite()
                 && h > z0
-                && crate::math::kernels::ln(h) - crate::math::kernels::ln(z0)
+                && crate::portable::transcendental::ln(h) - crate::portable::transcendental::ln(z0)
                     >= WindConfig::MIN_LOG_RATIO,
             "reference_height",
             h,

@@ -2,7 +2,7 @@
 //! units) pushed by the air's pressure along its normal: a physically simulated flag.
 
 use crate::error::InvalidValue;
-use crate::math::kernels::sin_cos;
+use crate::portable::transcendental::sin_cos;
 
 mod constraints;
 mod loads;

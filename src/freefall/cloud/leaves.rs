@@ -13,13 +13,13 @@ use crate::freefall::model::{
 };
 use crate::freefall::store::Store;
 use crate::freefall::store::air::Air;
-use crate::freefall::store::block::{FallConstants, Shared};
+use crate::freefall::store::block::{FallConstants, SharedConstants};
 use crate::freefall::store::cold::FallStart;
 use crate::freefall::store::path::FallPath;
 use crate::freefall::store::step::Step;
 use crate::freefall::store::view::FallView;
 use crate::lod::{Focus, LodTiers};
-use crate::math::geometry::{Q, V3};
+use crate::portable::geometry::{Q, V3};
 use crate::wind::WindField;
 
 pub use crate::freefall::store::pose::LeafPose;
@@ -58,7 +58,7 @@ pub struct CloudStep<'a> {
 /// a [`LeafCloud`](super::LeafCloud), stepped by [`CloudLeaves::step`], shown by [`CloudLeaves::poses`].
 #[derive(Clone, Debug)]
 pub struct CloudLeaves {
-    store: Store<Shared>,
+    store: Store<SharedConstants>,
     scales: FallScales,
     chain: Arc<BoundedChain>,
     seed: u64,
@@ -89,7 +89,7 @@ impl CloudLeaves {
     ) -> Self {
         let constants = FallConstants::new(&scales, ground, max_angle, Some(lod));
         let mut cloud = Self {
-            store: Store::new(Shared(constants)),
+            store: Store::new(SharedConstants(constants)),
             scales,
             chain,
             seed,
@@ -147,7 +147,7 @@ impl CloudLeaves {
             model: step.model,
             air: step.wind.map_or(Air::Still, Air::Field),
             focus: step.focus,
-            lanes: crate::math::lanes_enabled(),
+            lanes: crate::portable::lanes_enabled(),
             recycle_after: self.recycle_after,
         };
         let done = self.store.step(step.dt, &driver, pool);

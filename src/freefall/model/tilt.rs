@@ -2,9 +2,9 @@
 
 use bevy::math::{Quat, Vec3};
 
-use crate::math::geometry::{Q, V3};
-use crate::math::kernels::{clamp, sin_cos};
-use crate::math::lane::Lane;
+use crate::portable::geometry::{Q, V3};
+use crate::portable::lane::Lane;
+use crate::portable::transcendental::{clamp, sin_cos};
 use crate::wind::WindField;
 
 /// How the wind turns the object (eq. 15): θ = W N(t), leaning downwind. The paper's N(t) is

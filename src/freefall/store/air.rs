@@ -3,10 +3,10 @@
 
 use bevy::math::Vec3;
 
-use super::block::{Block, Constants, W};
+use super::block::{Block, ConstantStorage, W};
 use crate::freefall::model::release::FallRelease;
-use crate::math::geometry::V3;
-use crate::math::lane::Lane;
+use crate::portable::geometry::V3;
+use crate::portable::lane::Lane;
 use crate::wind::{Moment, MoverFlow, WindField};
 
 /// The air the falls move in.
@@ -58,7 +58,7 @@ impl<'a> Reading<'a> {
 
     /// This step's air for the first `live` falls of `blocks`: the movers whose flow cannot
     /// reach any of them left out (`None` where nothing would be).
-    pub(super) fn around<K: Constants>(
+    pub(super) fn around<K: ConstantStorage>(
         &self,
         blocks: &[Block<K>],
         live: usize,
@@ -83,7 +83,7 @@ impl<'a> Reading<'a> {
 
     /// The air's velocity at lanes `k..` of `block` (where each fall is), held to
     /// [`FallRelease::MAX_SPEED`].
-    pub(super) fn lanes<L: Lane, K: Constants>(&self, block: &Block<K>, k: usize) -> V3<L> {
+    pub(super) fn lanes<L: Lane, K: ConstantStorage>(&self, block: &Block<K>, k: usize) -> V3<L> {
         let h = &block.hot;
         match self {
             Reading::Still => V3::splat(Vec3::ZERO),

@@ -1,6 +1,6 @@
 //! A block of the fall store: [`W`] falls side by side, each number of their state in a column
 //! of `W` lanes ([`Hot`]), so a step loads and stores whole lanes; their constants
-//! ([`Constants`]) shared by the store or held per fall. Their rarely touched state is
+//! ([`ConstantStorage`]) shared by the store or held per fall. Their rarely touched state is
 //! [`Cold`](super::cold::Cold), one struct a fall beside the blocks.
 
 use crate::freefall::model::motion::FallScales;
@@ -8,7 +8,7 @@ use crate::freefall::model::motion::FallScales;
 use crate::freefall::model::database::TrajectoryDatabase;
 use crate::freefall::model::piece::Piece;
 use crate::lod::LodTiers;
-use crate::math::lane::Lane;
+use crate::portable::lane::Lane;
 
 /// Falls a block holds: the widest lanes the step uses.
 pub(crate) const W: usize = 4;
@@ -89,7 +89,7 @@ impl FallConstants {
 
 /// [`FallConstants`] in lanes.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Consts<L> {
+pub(crate) struct LaneConstants<L> {
     pub descent_speed: L,
     pub inv_drag_length: L,
     pub ground: L,
@@ -98,17 +98,17 @@ pub(crate) struct Consts<L> {
 
 columns!(
     /// [`FallConstants`] held per fall (no levels of detail: `near` NaN).
-    ConstLanes { descent_speed, inv_drag_length, ground, max_angle, near, far }
+    ConstantColumns { descent_speed, inv_drag_length, ground, max_angle, near, far }
 );
 
-/// Where a store keeps its falls' constants: once for all ([`Shared`], splatted into the lanes:
-/// a cloud's leaves and a single path) or per fall ([`PerFall`], in a column: the app's falling
+/// Where a store keeps its falls' constants: once for all ([`SharedConstants`], splatted into the lanes:
+/// a cloud's leaves and a single path) or per fall ([`PerFallConstants`], in a column: the app's falling
 /// objects, each of its own description).
-pub(crate) trait Constants: Clone + Send + Sync + 'static {
+pub(crate) trait ConstantStorage: Clone + Send + Sync + 'static {
     /// What a block holds of them (nothing when shared).
     type Lanes: Copy + Default + Send + Sync + std::fmt::Debug;
     /// The constants of lanes `k..k + L::WIDTH`.
-    fn load<L: Lane>(&self, lanes: &Self::Lanes, k: usize) -> Consts<L>;
+    fn load<L: Lane>(&self, lanes: &Self::Lanes, k: usize) -> LaneConstants<L>;
     /// Sets lane `k`'s (nothing when shared).
     fn set(lanes: &mut Self::Lanes, k: usize, constants: &FallConstants);
     /// Lane `k`'s levels of detail.
@@ -130,15 +130,15 @@ pub(crate) trait Constants: Clone + Send + Sync + 'static {
 
 /// Constants every fall of the store shares.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Shared(pub FallConstants);
+pub(crate) struct SharedConstants(pub FallConstants);
 
-impl Constants for Shared {
+impl ConstantStorage for SharedConstants {
     type Lanes = ();
 
     #[inline]
-    fn load<L: Lane>(&self, _: &(), _: usize) -> Consts<L> {
+    fn load<L: Lane>(&self, _: &(), _: usize) -> LaneConstants<L> {
         let c = &self.0;
-        Consts {
+        LaneConstants {
             descent_speed: L::splat(c.descent_speed),
             inv_drag_length: L::splat(c.inv_drag_length),
             ground: L::splat(c.ground),
@@ -157,14 +157,14 @@ impl Constants for Shared {
 
 /// Constants held per fall.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct PerFall;
+pub(crate) struct PerFallConstants;
 
-impl Constants for PerFall {
-    type Lanes = ConstLanes;
+impl ConstantStorage for PerFallConstants {
+    type Lanes = ConstantColumns;
 
     #[inline]
-    fn load<L: Lane>(&self, lanes: &ConstLanes, k: usize) -> Consts<L> {
-        Consts {
+    fn load<L: Lane>(&self, lanes: &ConstantColumns, k: usize) -> LaneConstants<L> {
+        LaneConstants {
             descent_speed: L::load(&lanes.descent_speed, k),
             inv_drag_length: L::load(&lanes.inv_drag_length, k),
             ground: L::load(&lanes.ground, k),
@@ -172,7 +172,7 @@ impl Constants for PerFall {
         }
     }
 
-    fn set(lanes: &mut ConstLanes, k: usize, c: &FallConstants) {
+    fn set(lanes: &mut ConstantColumns, k: usize, c: &FallConstants) {
         lanes.descent_speed[k] = c.descent_speed;
         lanes.inv_drag_length[k] = c.inv_drag_length;
         lanes.ground[k] = c.ground;
@@ -180,19 +180,19 @@ impl Constants for PerFall {
         (lanes.near[k], lanes.far[k]) = c.lod.map_or((f32::NAN, f32::NAN), |l| (l.near, l.far));
     }
 
-    fn lod(&self, lanes: &ConstLanes, k: usize) -> Option<LodTiers> {
+    fn lod(&self, lanes: &ConstantColumns, k: usize) -> Option<LodTiers> {
         let (near, far) = (lanes.near[k], lanes.far[k]);
         (!near.is_nan()).then_some(LodTiers { near, far })
     }
 
-    fn copy_lane(lanes: &mut ConstLanes, to: usize, source: &ConstLanes, from: usize) {
+    fn copy_lane(lanes: &mut ConstantColumns, to: usize, source: &ConstantColumns, from: usize) {
         lanes.copy_lane(to, source, from);
     }
 }
 
 /// [`W`] falls' lanes.
 #[derive(Debug)]
-pub(crate) struct Block<K: Constants> {
+pub(crate) struct Block<K: ConstantStorage> {
     pub hot: Hot,
     /// A swing's first database row.
     pub row: [u32; W],
@@ -203,15 +203,15 @@ pub(crate) struct Block<K: Constants> {
     pub consts: K::Lanes,
 }
 
-impl<K: Constants> Clone for Block<K> {
+impl<K: ConstantStorage> Clone for Block<K> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<K: Constants> Copy for Block<K> {}
+impl<K: ConstantStorage> Copy for Block<K> {}
 
-impl<K: Constants> Default for Block<K> {
+impl<K: ConstantStorage> Default for Block<K> {
     fn default() -> Self {
         Self {
             hot: Hot::default(),
@@ -223,7 +223,7 @@ impl<K: Constants> Default for Block<K> {
     }
 }
 
-impl<K: Constants> Block<K> {
+impl<K: ConstantStorage> Block<K> {
     /// Lane `from` of `source` into lane `to`.
     pub fn copy_lane(&mut self, to: usize, source: &Self, from: usize) {
         self.hot.copy_lane(to, &source.hot, from);

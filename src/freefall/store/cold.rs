@@ -17,7 +17,7 @@ use crate::freefall::model::random::FallRng;
 use crate::freefall::model::regime::PrimitiveMotion;
 use crate::freefall::model::release::FallRelease;
 use crate::lod::LodTiers;
-use crate::math::geometry::Q;
+use crate::portable::geometry::Q;
 
 /// Everything that starts a fall.
 #[derive(Clone, Debug)]
@@ -202,8 +202,8 @@ impl Cold {
         }
         // The plate's half-turns, less whole turns of the half angle (4π: the same quaternion).
         let turns = 4.0 * PI;
-        let flip = PI * crate::math::kernels::round(theta / PI);
-        let flip = flip - turns * crate::math::kernels::round(flip / turns);
+        let flip = PI * crate::portable::transcendental::round(theta / PI);
+        let flip = flip - turns * crate::portable::transcendental::round(flip / turns);
         match old {
             // The same curve carries on from where it was.
             Some(Piece::Curve {

@@ -19,16 +19,16 @@ use wide::f32x4;
 type Lanes = f32x4;
 
 use super::air::Reading;
-use super::block::{Block, Constants, W};
+use super::block::{Block, ConstantStorage, W};
+use super::clock::FallClock;
 use super::cold::Cold;
 use super::kernel;
 use super::slot::{Part, Slot, StepOutcome};
 use super::step::Step;
 use super::{Store, band_of, due_bands};
-use crate::freefall::fall_lod::FallClock;
 use crate::freefall::model::release::FallRelease;
-use crate::math::geometry::{Q, V3};
-use crate::math::lane::Lane;
+use crate::portable::geometry::{Q, V3};
+use crate::portable::lane::Lane;
 
 /// What one step did.
 #[derive(Clone, Debug, Default)]
@@ -59,7 +59,7 @@ struct ChunkReport {
 /// beside its work, small enough that two threads share a few thousand falls).
 const CHUNK_BLOCKS: usize = 128;
 
-impl<K: Constants> Store<K> {
+impl<K: ConstantStorage> Store<K> {
     /// One fixed step of `dt` seconds (held to 0..=[`FallRelease::MAX_STEP`]): the clock moves
     /// on and every fall due advances over the time since its own last step.
     pub fn step(&mut self, dt: f32, step: &Step, pool: Option<&TaskPool>) -> StepReport {
@@ -120,7 +120,7 @@ impl<K: Constants> Store<K> {
 }
 
 /// Steps `blocks` (the falls `cold` of band `band`).
-fn step_blocks<K: Constants>(
+fn step_blocks<K: ConstantStorage>(
     kind: &K,
     blocks: &mut [Block<K>],
     cold: &mut [Cold],
@@ -155,7 +155,7 @@ fn step_blocks<K: Constants>(
 
 /// Steps the `cold.len()` falls of `block`.
 #[allow(clippy::too_many_arguments)]
-fn step_block<K: Constants>(
+fn step_block<K: ConstantStorage>(
     kind: &K,
     block: &mut Block<K>,
     cold: &mut [Cold],
@@ -266,7 +266,7 @@ fn step_block<K: Constants>(
 /// on and those at rest in lanes; the others one at a time ([`Slot::prepare`]), their move and
 /// orientation finished in lanes with the usual ones.
 #[allow(clippy::too_many_arguments)]
-fn step_lanes<K: Constants>(
+fn step_lanes<K: ConstantStorage>(
     kind: &K,
     block: &mut Block<K>,
     cold: &mut [Cold],

@@ -7,12 +7,12 @@
 
 use bevy::math::Vec3;
 
-use super::block::{Block, Constants, Consts, Hot, W};
+use super::block::{Block, ConstantStorage, Hot, LaneConstants, W};
 use crate::freefall::model::database::TrajectoryDatabase;
 use crate::freefall::model::piece::sample::{WORDS, sample};
 use crate::freefall::model::tilt::wind_tilt;
-use crate::math::geometry::{Q, V3};
-use crate::math::lane::Lane;
+use crate::portable::geometry::{Q, V3};
+use crate::portable::lane::Lane;
 
 /// Drift speeds below this, m/s, are still air (flushed to zero: never subnormal).
 pub(crate) const MIN_DRIFT: f32 = 1e-6;
@@ -41,7 +41,7 @@ pub(crate) fn turned<L: Lane>(turn: (L, L), v: V3<L>) -> V3<L> {
 #[inline]
 pub(crate) fn fall_on<L: Lane>(
     m: &mut Motion<L>,
-    c: &Consts<L>,
+    c: &LaneConstants<L>,
     delta: V3<L>,
     dt: L,
     wind: V3<L>,
@@ -153,7 +153,7 @@ pub(crate) fn motion<L: Lane>(h: &Hot, k: usize) -> Motion<L> {
 /// The piece sampled at piece time `t` for lanes `k..` of `block`: its displacement in the
 /// heading frame and the plate's tilt.
 #[inline]
-pub(crate) fn sample_piece<L: Lane, K: Constants>(
+pub(crate) fn sample_piece<L: Lane, K: ConstantStorage>(
     block: &Block<K>,
     k: usize,
     db: &TrajectoryDatabase,
@@ -175,7 +175,7 @@ pub(crate) fn sample_piece<L: Lane, K: Constants>(
 
 /// Where the swing of lane `k` of `block` ends (its segment's last sample, heading frame).
 #[inline]
-pub(crate) fn swing_end<K: Constants>(
+pub(crate) fn swing_end<K: ConstantStorage>(
     block: &Block<K>,
     k: usize,
     db: &TrajectoryDatabase,
@@ -314,7 +314,7 @@ pub(crate) fn finish<L: Lane>(
     h: &mut Hot,
     k: usize,
     mask: L::Mask,
-    c: &Consts<L>,
+    c: &LaneConstants<L>,
     t: L,
     offset: V3<L>,
     delta: V3<L>,

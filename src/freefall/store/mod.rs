@@ -5,7 +5,7 @@
 //! | part | what | touched |
 //! |---|---|---|
 //! | [`Hot`](block::Hot) columns | control points, orientations, carry, drift, f(t), the piece's clock and offset, the heading, the piece compiled (1/T, its words, its database row), flags, the tier's span | every step of the fall, lane by lane |
-//! | [`Constants`](block::Constants) | U, 1/ℓ, the ground, W, levels of detail | splatted for a cloud; a column for objects |
+//! | [`ConstantStorage`](block::Constants) | U, 1/ℓ, the ground, W, levels of detail | splatted for a cloud; a column for objects |
 //! | [`Cold`](cold::Cold) | generator, chain, motion and sojourn, the piece itself, blends, release fade, easing | when a piece ends, a motion changes, a fall lands or is let go |
 //!
 //! **Levels of detail in bands.** A fall's tier (1, 2 or 4: stepped every fixed step, every
@@ -24,6 +24,7 @@
 
 pub(crate) mod air;
 pub(crate) mod block;
+pub(crate) mod clock;
 pub(crate) mod cold;
 pub(crate) mod driver;
 pub(crate) mod kernel;
@@ -36,11 +37,11 @@ pub(crate) mod view;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
-use self::block::{Block, Constants, W};
+use self::block::{Block, ConstantStorage, W};
+use self::clock::FallClock;
 use self::cold::Cold;
 use self::cold::FallStart;
 use self::slot::Slot;
-use crate::freefall::fall_lod::FallClock;
 use crate::freefall::model::FallModel;
 
 /// How many bands: tier 1; tier 2 at phases 0 and 1; tier 4 at phases 0 to 3.
@@ -67,14 +68,14 @@ pub(crate) fn due_bands(steps: u64) -> [usize; 3] {
 
 /// A dense run of falls: `len` of them in blocks of [`W`], their cold state beside.
 #[derive(Debug)]
-pub(crate) struct Band<K: Constants> {
+pub(crate) struct Band<K: ConstantStorage> {
     pub blocks: Vec<Block<K>>,
     pub cold: Vec<Cold>,
 }
 
 /// A clone keeps the room the band has grown to, so that it steps as the original does: a band
 /// cloned to its length would reallocate (and copy whole) on the first fall that moves into it.
-impl<K: Constants> Clone for Band<K> {
+impl<K: ConstantStorage> Clone for Band<K> {
     fn clone(&self) -> Self {
         let mut blocks = Vec::with_capacity(self.blocks.capacity());
         blocks.extend_from_slice(&self.blocks);
@@ -84,7 +85,7 @@ impl<K: Constants> Clone for Band<K> {
     }
 }
 
-impl<K: Constants> Default for Band<K> {
+impl<K: ConstantStorage> Default for Band<K> {
     fn default() -> Self {
         Self {
             blocks: Vec::new(),
@@ -93,7 +94,7 @@ impl<K: Constants> Default for Band<K> {
     }
 }
 
-impl<K: Constants> Band<K> {
+impl<K: ConstantStorage> Band<K> {
     /// How many falls.
     pub fn len(&self) -> usize {
         self.cold.len()
@@ -152,7 +153,7 @@ impl Place {
 /// Falls in bands of blocks (see the module docs), each known by a handle that stays the same
 /// while it lives.
 #[derive(Clone, Debug)]
-pub(crate) struct Store<K: Constants> {
+pub(crate) struct Store<K: ConstantStorage> {
     pub kind: K,
     pub bands: [Band<K>; BANDS],
     places: Vec<Place>,
@@ -164,7 +165,7 @@ pub(crate) struct Store<K: Constants> {
     pub resting: usize,
 }
 
-impl<K: Constants> Store<K> {
+impl<K: ConstantStorage> Store<K> {
     /// An empty store.
     pub fn new(kind: K) -> Self {
         Self {

@@ -7,7 +7,7 @@ use bevy::math::{Quat, Vec3};
 
 use super::Store;
 use super::air::Air;
-use super::block::{FallConstants, Shared};
+use super::block::{FallConstants, SharedConstants};
 use super::cold::FallStart;
 use super::slot::StepOutcome;
 use super::step::Step;
@@ -45,7 +45,7 @@ use crate::freefall::model::tilt::WindTilt;
 /// ```
 #[derive(Clone, Debug)]
 pub struct FallPath {
-    store: Store<Shared>,
+    store: Store<SharedConstants>,
 }
 
 impl FallPath {
@@ -89,7 +89,7 @@ impl FallPath {
         release: FallRelease,
     ) -> Self {
         let constants = FallConstants::new(&scales, release.ground, 0.0, None);
-        let mut store = Store::new(Shared(constants));
+        let mut store = Store::new(SharedConstants(constants));
         store.insert(
             model,
             &FallStart {
@@ -124,7 +124,7 @@ impl FallPath {
             model,
             air: Air::Uniform(wind, tilt.reference_speed),
             focus: None,
-            lanes: crate::math::lanes_enabled(),
+            lanes: crate::portable::lanes_enabled(),
             recycle_after: None,
         };
         let report = self.store.step(dt, &step, None);
@@ -209,9 +209,9 @@ impl FallPath {
     }
 }
 
-impl From<Store<Shared>> for FallPath {
+impl From<Store<SharedConstants>> for FallPath {
     /// The first fall of `store` (a store of one).
-    fn from(store: Store<Shared>) -> Self {
+    fn from(store: Store<SharedConstants>) -> Self {
         Self { store }
     }
 }

@@ -5,11 +5,11 @@
 use bevy::math::{Quat, Vec3};
 use bevy::tasks::TaskPool;
 
-use super::block::{Block, Constants, Hot, W};
+use super::block::{Block, ConstantStorage, Hot, W};
 use super::cold::Cold;
 use super::{BANDS, Store};
-use crate::math::geometry::{Q, V3};
-use crate::math::lane::Lane;
+use crate::portable::geometry::{Q, V3};
+use crate::portable::lane::Lane;
 
 /// A shown pose: position and orientation, in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,7 +79,7 @@ pub(crate) fn smoothed<L: Lane>(h: &Hot, k: usize, s: L) -> (V3<L>, Q<L>) {
 
 /// The share of lanes `k..`'s last span passed at `now`, in [0, 1] (1 before the first step).
 #[inline]
-fn share<L: Lane, K: Constants>(block: &Block<K>, k: usize, now: f64) -> L {
+fn share<L: Lane, K: ConstantStorage>(block: &Block<K>, k: usize, now: f64) -> L {
     let span = L::load(&block.hot.span, k);
     let since = L::from_fn(|j| (now - block.updated[(k + j).min(W - 1)]) as f32);
     let s = since / span;
@@ -94,7 +94,12 @@ fn share<L: Lane, K: Constants>(block: &Block<K>, k: usize, now: f64) -> L {
 }
 
 /// The pose shown at `now` of lane `k` of `block`, with what is left of its easing.
-pub(crate) fn shown<K: Constants>(block: &Block<K>, k: usize, cold: &Cold, now: f64) -> LeafPose {
+pub(crate) fn shown<K: ConstantStorage>(
+    block: &Block<K>,
+    k: usize,
+    cold: &Cold,
+    now: f64,
+) -> LeafPose {
     let s = share::<f32, K>(block, k, now);
     let (position, rotation) = smoothed::<f32>(&block.hot, k, s);
     eased(position.vec3(), rotation.quat(), cold, now)
@@ -118,13 +123,13 @@ fn eased(position: Vec3, rotation: Quat, cold: &Cold, now: f64) -> LeafPose {
 /// Blocks a parallel task poses together.
 const POSE_CHUNK: usize = 128;
 
-impl<K: Constants> Store<K> {
+impl<K: ConstantStorage> Store<K> {
     /// Every fall's shown pose at `now` (s on the store's clock), `out[handle]`: `out` is
     /// resized to [`Store::handles`]. Posed in lanes, chunks on `pool`'s threads (the same bits
     /// on any number).
     pub fn poses(&self, now: f64, pool: Option<&TaskPool>, out: &mut Vec<LeafPose>) {
         out.resize(self.handles(), LeafPose::default());
-        let lanes = crate::math::lanes_enabled();
+        let lanes = crate::portable::lanes_enabled();
         for band in &self.bands[..BANDS] {
             let n = band.len();
             let pose_chunk = |c: usize, blocks: &[Block<K>]| {
@@ -163,7 +168,7 @@ impl<K: Constants> Store<K> {
 }
 
 /// The poses of the `cold.len()` falls of `block` at `now`, appended with their handles.
-fn block_poses<K: Constants>(
+fn block_poses<K: ConstantStorage>(
     block: &Block<K>,
     cold: &[Cold],
     now: f64,

@@ -3,7 +3,7 @@
 use bevy::math::{Quat, Vec3};
 
 use super::Store;
-use super::block::Constants;
+use super::block::ConstantStorage;
 use super::block::{Hot, W};
 use super::cold::Cold;
 use super::pose::smoothed;
@@ -111,7 +111,7 @@ impl<'a> FallView<'a> {
     }
 }
 
-impl<K: Constants> Store<K> {
+impl<K: ConstantStorage> Store<K> {
     /// Fall `handle`, to read.
     pub fn view(&self, handle: u32) -> Option<FallView<'_>> {
         let place = self.place(handle)?;

@@ -67,8 +67,8 @@ pub(crate) fn ln(x: f32) -> f32 {
 
 /// [`ln`] for one number or for lanes.
 #[inline]
-pub(crate) fn ln_lanes<L: crate::math::lane::Lane>(x: L) -> L {
-    crate::math::kernels::ln(x)
+pub(crate) fn ln_lanes<L: crate::portable::lane::Lane>(x: L) -> L {
+    crate::portable::transcendental::ln(x)
 }
 
 #[cfg(test)]

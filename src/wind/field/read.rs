@@ -6,9 +6,9 @@ use wide::f32x4;
 
 use super::WindField;
 use super::profile;
-use crate::math::geometry::V3;
-use crate::math::kernels::{clamp, floor};
-use crate::math::lane::Lane;
+use crate::portable::geometry::V3;
+use crate::portable::lane::Lane;
+use crate::portable::transcendental::{clamp, floor};
 use crate::spectrum::periodic_lerp;
 use crate::wind::config::{SpatialMode, TemporalMode};
 use crate::wind::mover::MoverFlow;

@@ -6,8 +6,8 @@ use bevy::math::{Quat, Vec3, Vec3A};
 use super::super::local::{Placement, fade};
 use super::super::pulse::Pulse;
 use super::{SourceShape, WindSource};
-use crate::math::geometry::{Q, V3};
-use crate::math::kernels::acos;
+use crate::portable::geometry::{Q, V3};
+use crate::portable::transcendental::acos;
 
 /// 1 up to `inner`, then fading smoothly to 0 at `outer`.
 fn plateau(x: f32, inner: f32, outer: f32) -> f32 {

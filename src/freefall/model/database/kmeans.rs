@@ -7,7 +7,7 @@ use super::Feature;
 /// The feature vector as the search compares it: the glide on a log scale.
 pub(super) fn search_space(f: &Feature) -> Feature {
     [
-        crate::math::kernels::ln(f[0].abs().max(1e-3)),
+        crate::portable::transcendental::ln(f[0].abs().max(1e-3)),
         f[1],
         f[2],
         f[3],

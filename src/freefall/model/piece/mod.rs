@@ -16,8 +16,8 @@ use bevy::math::{Quat, Vec2, Vec3};
 use super::database::{SEGMENT_SAMPLES, TrajectoryDatabase};
 use super::motion::{CHAOTIC_MIN_TIME, CHAOTIC_SCALE, FallScales, Glide, MOTION_SHAPES};
 use super::regime::PrimitiveMotion;
-use crate::math::geometry::Q;
-use crate::math::kernels::sin_cos;
+use crate::portable::geometry::Q;
+use crate::portable::transcendental::sin_cos;
 
 pub(crate) mod sample;
 
@@ -121,12 +121,12 @@ impl Piece {
         // tumbling plate's angle stays a bounded argument however many half-turns it made.
         let theta = if choice.theta.is_finite() {
             let turns = 2.0 * std::f32::consts::TAU;
-            choice.theta - turns * crate::math::kernels::round(choice.theta / turns)
+            choice.theta - turns * crate::portable::transcendental::round(choice.theta / turns)
         } else {
             0.0
         };
         // The half-turn the plate is in, and where the swing ends.
-        let base = PI * crate::math::kernels::round(theta / PI);
+        let base = PI * crate::portable::transcendental::round(theta / PI);
         let (tumble, end) = if choice.same_side {
             let survival = choice.survival.clamp(0.0, 1.0);
             let full = base + sign * (PI + range) - theta;
@@ -140,7 +140,7 @@ impl Piece {
                 theta + (base + sign * range - theta).clamp(-most, most),
             )
         };
-        let (sin, cos) = crate::math::kernels::sin_cos_bounded(0.5 * theta);
+        let (sin, cos) = crate::portable::transcendental::sin_cos_bounded(0.5 * theta);
         let sideways = if tumble { choice.survival } else { 1.0 };
         let swings = choice.swings(tumble);
         let duration = (swings * scales.swing_time()).max(MIN_PIECE);

@@ -8,9 +8,9 @@ use bevy::math::{Quat, Vec3};
 
 use super::Piece;
 use crate::freefall::model::database::{SEGMENT_SAMPLES, TrajectoryDatabase};
-use crate::math::geometry::{Q, V3};
-use crate::math::kernels::{atan2, clamp, sin_cos_bounded};
-use crate::math::lane::Lane;
+use crate::portable::geometry::{Q, V3};
+use crate::portable::lane::Lane;
+use crate::portable::transcendental::{atan2, clamp, sin_cos_bounded};
 
 /// How many numbers a compiled piece holds (see [`PieceWords`]).
 pub(crate) const WORDS: usize = 11;

@@ -8,15 +8,15 @@ use bevy::math::Vec3;
 
 pub(crate) mod release;
 
-use super::block::{Block, Constants};
+use super::block::{Block, ConstantStorage};
+use super::clock::FallClock;
 use super::cold::{Blend, Cold, Easing, smoothstep};
 use super::kernel::{self, Motion, commit, fall_on, motion, orient, sample_piece, turned, yaw};
 use super::pose::{LeafPose, shown, smoothed};
 use super::step::Step;
-use crate::freefall::fall_lod::FallClock;
 use crate::freefall::model::FallModel;
 use crate::freefall::model::piece::Piece;
-use crate::math::geometry::{Q, V3};
+use crate::portable::geometry::{Q, V3};
 
 /// Most pieces one step may cross; the rest of a huge step falls straight at U.
 const MAX_PIECES_PER_STEP: u32 = 64;
@@ -48,13 +48,13 @@ pub(crate) enum Part {
 }
 
 /// One fall of a store: lane `k` of `block` and its cold state.
-pub(crate) struct Slot<'a, K: Constants> {
+pub(crate) struct Slot<'a, K: ConstantStorage> {
     pub block: &'a mut Block<K>,
     pub k: usize,
     pub cold: &'a mut Cold,
 }
 
-impl<K: Constants> Slot<'_, K> {
+impl<K: ConstantStorage> Slot<'_, K> {
     /// What a step at `clock` after `waited` seconds must ease the shown pose from: the pose
     /// shown now, if the step comes before the last span was shown (a change to a finer tier)
     /// or an easing is under way, and when the easing will end.

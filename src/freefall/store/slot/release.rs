@@ -10,17 +10,17 @@ use super::Slot;
 use crate::freefall::model::FallModel;
 use crate::freefall::model::motion::Glide;
 use crate::freefall::model::release::{FallRelease, LIFT_OFF_HOP};
-use crate::freefall::store::block::{Constants, FallConstants};
+use crate::freefall::store::block::{ConstantStorage, FallConstants};
 use crate::freefall::store::cold::{Cold, FallStart, ReleaseFade};
-use crate::math::geometry::{Q, V3};
-use crate::math::kernels::atan2;
+use crate::portable::geometry::{Q, V3};
+use crate::portable::transcendental::atan2;
 
 /// The release orientation fades into the synthesised one over this many swings ...
 const RELEASE_SWINGS: f32 = 1.0;
 /// ... and at least this long, s.
 const MIN_RELEASE: f32 = 0.25;
 
-impl<K: Constants> Slot<'_, K> {
+impl<K: ConstantStorage> Slot<'_, K> {
     /// Lets the fall go as `start` says, its clock at `clock` (its first step is then taken
     /// at once, over the time since): the chain's first motion, a heading from the seed (or
     /// the release orientation's long axis), the first piece, the release orientation fading

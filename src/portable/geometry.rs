@@ -4,8 +4,8 @@
 
 use bevy::math::{Quat, Vec3};
 
-use super::kernels::{acos, sin_cos};
 use super::lane::Lane;
+use super::transcendental::{acos, sin_cos};
 
 /// A vector of lanes.
 #[derive(Clone, Copy, Debug)]

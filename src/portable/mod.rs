@@ -2,15 +2,15 @@
 //! for one number or for SIMD lanes ([`lane::Lane`]), in plain IEEE-754 operations in a fixed
 //! order: the same bits on every machine, in every lane, on any number of threads and in the
 //! browser. What is here: the lane abstraction, the transcendental kernels the step calls
-//! ([`kernels`]) and fixed-order vectors and quaternions ([`geometry`]). Everything else the
+//! ([`transcendental`]) and fixed-order vectors and quaternions ([`geometry`]). Everything else the
 //! crate computes rarely (a new swing, a Markov step, the database at start-up) uses the
 //! pure-Rust `libm`, which is portable in the same way.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
 pub(crate) mod geometry;
-pub(crate) mod kernels;
 pub(crate) mod lane;
+pub(crate) mod transcendental;
 
 /// Whether the falls' usual steps go several at a time in SIMD lanes (on unless turned off):
 /// their bits are the same either way, so this only changes the speed.

@@ -4,7 +4,7 @@
 
 use wide::f32x4;
 
-use super::kernels::{acos, atan2, floor, ln, round, sin_cos};
+use super::transcendental::{acos, atan2, floor, ln, round, sin_cos};
 
 /// Distance in ulps between two f32 of the same sign class (0 for equal bits or two NaNs).
 fn ulps(a: f32, b: f32) -> u64 {
