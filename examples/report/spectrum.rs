@@ -37,7 +37,7 @@ pub fn report(r: &mut Report) {
             let seeds = (65_536 / (n * n)).clamp(4, 64) as u64;
             let mut power = vec![0.0; n / 2 + 1];
             for seed in 0..seeds {
-                let field = fbm(&dims, beta, 7 + seed);
+                let field = fbm(&dims, beta, 7 + seed).expect("a valid grid and beta");
                 for (p, q) in power.iter_mut().zip(line_spectrum(&field, &dims, 0)) {
                     *p += q;
                 }
@@ -46,7 +46,7 @@ pub fn report(r: &mut Report) {
             let error = (slope + f64::from(beta)).abs();
             let repeats = if r.quick { 1 } else { (1 << 18) / (n * n) + 1 };
             let ours = seconds_per(repeats, || {
-                black_box(fbm(black_box(&dims), beta, 1));
+                black_box(fbm(black_box(&dims), beta, 1).expect("a valid grid and beta"));
             });
             let bare = bare_fft_2d(n, repeats);
             points.push((ours * 1e6, error));

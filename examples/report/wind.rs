@@ -21,7 +21,7 @@ pub fn report(r: &mut Report) {
          between coarse nodes is lost either way: the error measures what a grid spacing of s \
          fine cells costs. Time: ns per sample.",
     );
-    let field = fbm(&[FINE, FINE], 5.0 / 3.0, 3);
+    let field = fbm(&[FINE, FINE], 5.0 / 3.0, 3).expect("a valid grid and beta");
     let rms = (field.iter().map(|v| f64::from(v * v)).sum::<f64>() / field.len() as f64).sqrt();
     let mut rows = Vec::new();
     let (mut lerp_points, mut near_points) = (Vec::new(), Vec::new());

@@ -1,7 +1,7 @@
 //! The noise matrix that drives the yarn angles (cloth paper §3.1, §4).
 
 use crate::error::InvalidValue;
-use crate::spectrum::{GridShape, try_fbm};
+use crate::spectrum::{GridShape, fbm};
 
 use super::params::ClothError;
 
@@ -28,7 +28,7 @@ impl NoiseSheet {
             dims.push(frames);
         }
         dims.extend([rows.max(2), columns.max(2)]);
-        let mut values = try_fbm(&dims, beta, seed)
+        let mut values = fbm(&dims, beta, seed)
             .map_err(|_| InvalidValue::new("beta", beta, "must be finite and ≥ 0"))?;
         // Scale into [−1, 1]: the angles then span exactly the amplitude range [−θ, θ].
         let peak = values.iter().fold(0.0f32, |m, v| m.max(v.abs()));

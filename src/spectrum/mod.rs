@@ -35,4 +35,4 @@ pub use error::SpectrumError;
 pub use fft::FftBackend;
 pub(crate) use grid::GridShape;
 pub(crate) use sample::periodic_lerp;
-pub use synth::{Synthesizer, fbm, try_fbm};
+pub use synth::{Synthesizer, fbm};

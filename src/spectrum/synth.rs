@@ -15,15 +15,11 @@ use super::normal::NormalPairs;
 /// Power spectral density `S(f) ∝ 1/|f|^(β+n−1)` (free-fall paper eq. 13, cloth paper eq. 1), so
 /// along any line the spectrum falls as `1/f^β`.
 ///
-/// # Panics
-/// On the inputs [`try_fbm`] rejects: an empty `dims`, an axis shorter than 2, or a negative or
-/// non-finite `beta`.
-pub fn fbm(dims: &[usize], beta: f32, seed: u64) -> Vec<f32> {
-    try_fbm(dims, beta, seed).unwrap_or_else(|e| panic!("fbm: {e}"))
-}
-
-/// [`fbm`] with a typed error instead of a panic.
-pub fn try_fbm(dims: &[usize], beta: f32, seed: u64) -> Result<Vec<f32>, SpectrumError> {
+/// # Errors
+/// An empty `dims`, more axes than [`Synthesizer::MAX_AXES`], an axis shorter than 2, more
+/// nodes than [`Synthesizer::MAX_NODES`], or a negative or non-finite `beta`: a
+/// [`SpectrumError`] naming which.
+pub fn fbm(dims: &[usize], beta: f32, seed: u64) -> Result<Vec<f32>, SpectrumError> {
     Ok(Synthesizer::new(dims, beta, FftBackend::Portable)?.field(seed))
 }
 
@@ -354,14 +350,14 @@ mod tests {
 
     #[test]
     fn bad_input_is_named() {
-        assert_eq!(try_fbm(&[], 1.0, 0), Err(SpectrumError::NoAxis));
+        assert_eq!(fbm(&[], 1.0, 0), Err(SpectrumError::NoAxis));
         assert_eq!(
-            try_fbm(&[8, 1], 1.0, 0),
+            fbm(&[8, 1], 1.0, 0),
             Err(SpectrumError::AxisTooShort { axis: 1, len: 1 })
         );
-        assert_eq!(try_fbm(&[8], -0.5, 0), Err(SpectrumError::Beta(-0.5)));
+        assert_eq!(fbm(&[8], -0.5, 0), Err(SpectrumError::Beta(-0.5)));
         assert!(matches!(
-            try_fbm(&[8], f32::NAN, 0),
+            fbm(&[8], f32::NAN, 0),
             Err(SpectrumError::Beta(_))
         ));
     }
@@ -373,7 +369,7 @@ mod tests {
             &[1 << 33, 1 << 33],
             &[1 << 20, 1 << 20],
         ] {
-            let error = try_fbm(dims, 1.0, 0).unwrap_err();
+            let error = fbm(dims, 1.0, 0).unwrap_err();
             assert!(
                 matches!(error, SpectrumError::TooManyNodes { .. }),
                 "{dims:?}"
@@ -396,7 +392,7 @@ mod tests {
         // all zero or NaN, on square and non-square grids alike.
         for dims in [&[64usize][..], &[48, 20], &[7, 12, 5]] {
             for beta in [1.0e9f32, 3.0e20, f32::MAX] {
-                let field = try_fbm(dims, beta, 3).unwrap();
+                let field = fbm(dims, beta, 3).unwrap();
                 let n = field.len() as f64;
                 let var = field.iter().map(|&v| f64::from(v).powi(2)).sum::<f64>() / n;
                 assert!(field.iter().all(|v| v.is_finite()), "{dims:?} β {beta}");

@@ -17,7 +17,7 @@ fn sim(grid: ClothGrid, params: ClothParams) -> ClothSim {
 #[test]
 fn filtered_yarns_keep_their_length() {
     let segments = 40;
-    let noise = bevy_windfall::spectrum::fbm(&[16, 64], 2.5, 4);
+    let noise = bevy_windfall::spectrum::fbm(&[16, 64], 2.5, 4).unwrap();
     for filter in [
         HarmonicFilter::All,
         HarmonicFilter::LowPass { max: 2 },

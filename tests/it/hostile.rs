@@ -16,7 +16,7 @@ use bevy_windfall::freefall::{
     DatabaseConfig, FallError, FallModel, FallRelease, MarkovChain, TrajectoryDatabase, WindTilt,
 };
 use bevy_windfall::prelude::*;
-use bevy_windfall::spectrum::try_fbm;
+use bevy_windfall::spectrum::fbm;
 use bevy_windfall::wind::Pulse;
 use common::hostile::{HOSTILE, TILT, case, finite, report};
 use common::paper_coin;
@@ -390,7 +390,7 @@ fn spectra_and_the_ode_refuse_by_name_or_stay_finite() {
             "beta",
             value,
             &["beta"],
-            try_fbm(&[32, 12], value, 1),
+            fbm(&[32, 12], value, 1),
             |e| e.field(),
             |field| {
                 let var =
