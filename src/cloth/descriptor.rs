@@ -6,8 +6,8 @@
 //! transformed back (eq. 6). After filtering, `ω(j)` is no longer of unit length: we keep its
 //! direction, so every segment keeps length δ and the yarn its length `n δ`.
 //!
-//! The yarn's geometry is here for those who build yarns by hand: [`yarn_from_angles`],
-//! [`total_curvature`] and its inverse [`bend_angles`], [`trace_yarn`].
+//! The yarn's geometry is here for those who build yarns by hand: [`yarn_from_angles`] and
+//! [`trace_yarn`].
 
 use std::sync::Arc;
 
@@ -27,30 +27,6 @@ pub fn yarn_from_angles(angles: &[f32], segment: f32) -> Vec<Vec2> {
         points.push(p);
     }
     points
-}
-
-/// Total curvature θ(j) = θ(j−1) + α(j), θ(0) = α(0) (eq. 3), from the bend angles α.
-pub fn total_curvature(bends: &[f32]) -> Vec<f32> {
-    bends
-        .iter()
-        .scan(0.0, |theta, &alpha| {
-            *theta += alpha;
-            Some(*theta)
-        })
-        .collect()
-}
-
-/// Bend angles α(j) = θ(j) − θ(j−1), α(0) = θ(0): the inverse of [`total_curvature`].
-pub fn bend_angles(total: &[f32]) -> Vec<f32> {
-    let mut previous = 0.0;
-    total
-        .iter()
-        .map(|&theta| {
-            let alpha = theta - previous;
-            previous = theta;
-            alpha
-        })
-        .collect()
 }
 
 /// Which harmonics of the descriptor survive. The mean direction (k = 0) always does; a harmonic
@@ -178,16 +154,6 @@ mod tests {
         assert_eq!(pts[0], Vec2::ZERO);
         assert!((pts[1] - Vec2::new(2.0, 0.0)).length() < 1e-6);
         assert!((pts[2] - Vec2::new(2.0, 2.0)).length() < 1e-6);
-    }
-
-    #[test]
-    fn curvature_round_trips() {
-        let alpha = [0.3, -0.1, 0.5, 0.0, -0.7];
-        let theta = total_curvature(&alpha);
-        assert!(theta[4].abs() < 1e-6, "θ(4) = Σ α = 0");
-        for (a, b) in bend_angles(&theta).iter().zip(alpha) {
-            assert!((a - b).abs() < 1e-6);
-        }
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! The double-sided triangle mesh of a cloth's node grid ([`build`]), rewritten in place each
-//! frame ([`write()`]): a [`ClothSim`](super::ClothSim)'s, a particle cloth's or your own.
+//! frame ([`write()`]): a [`ClothSim`](super::ClothSim)'s or a particle cloth's.
 
 use bevy::asset::RenderAssetUsages;
 use bevy::math::Vec3;

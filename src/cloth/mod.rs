@@ -22,6 +22,8 @@ mod directions;
 #[cfg(feature = "gizmos")]
 mod gizmos;
 mod measure;
+// The cloths' mesh: the crate's plugins build and write it; the report times it. Not API.
+#[doc(hidden)]
 pub mod mesh;
 mod noise;
 mod params;

@@ -160,7 +160,9 @@ impl WindGpuBuffers {
     }
 }
 
-/// What the last uploads cost: bytes of nodes per field and of parameters per frame.
+/// What the last uploads cost: bytes of nodes per field and of parameters per frame (the
+/// crate's GPU test reads it; not API).
+#[doc(hidden)]
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
 pub struct WindGpuUploads {
     /// The [`WindField::generation`] the nodes on the GPU belong to (0: none yet).
