@@ -49,6 +49,21 @@ const STRETCH_TOLERANCE: f32 = 0.02;
 /// substep found them and stop. A clamp, counted by [`ParticleCloth::undone_substeps`].
 const STRETCH_LIMIT: f32 = 0.5;
 
+/// Relative stretch of a yarn edge past which a tick is simulated again in twice the substeps
+/// (up to [`ParticleCloth::MAX_SUBSTEPS`]): the substeps are otherwise cut finer only from the
+/// next tick, and a whipping edge in a storm on a fine grid could be left stretched by 5–7 %.
+const RETRY_STRAIN: f32 = 2.0 * STRETCH_TOLERANCE;
+
+/// The state a tick starts from, kept while it may be simulated again ([`RETRY_STRAIN`]).
+#[derive(Clone, Debug, Default)]
+struct TickStart {
+    positions: Vec<Vec3>,
+    velocities: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    force: Vec3,
+    undone: u64,
+}
+
 /// Node masses a particle cloth accepts, kg: lighter nodes are driven by their drag past what
 /// an f32 substep resolves, heavier ones lose every force to rounding.
 const MIN_NODE_MASS: f64 = 1e-5;
@@ -63,7 +78,8 @@ const MAX_NODE_MASS: f64 = 1e9;
 /// ([`ParticleCloth::tick`], Macklin et al., "Small steps in physics simulation", 2019: 1 ms
 /// ticks give the same frequency, swing and drag within 4 % over 60 s, 4 ms ticks within 7 %),
 /// each tick one substep (or 2, 4 … [`ParticleCloth::MAX_SUBSTEPS`] while the yarns could not be
-/// held within 2 % of their lengths), each substep:
+/// held within 2 % of their lengths; a tick that leaves an edge more than 4 % long is simulated
+/// again in twice the substeps), each substep:
 /// 1. **Pressure along the normal, implicit.** p = ½ ρ |v_rel|² C_N(α) sgn(v_rel · n),
 ///    v_rel = v − u, α the incidence, C_N = C_D sin²α + C_L sin α cos²α (the face law's share
 ///    along the normal), written p = (l + k) w with w = v_rel · n and the rates
@@ -140,6 +156,7 @@ pub struct ParticleCloth {
     force: Vec3,
     /// Time not simulated yet (less than a tick), s.
     owed: f32,
+    tick_start: TickStart,
     /// Substeps undone since the cloth was made (see [`STRETCH_LIMIT`]).
     undone: u64,
     /// Substeps the next tick is cut into.
@@ -308,6 +325,7 @@ impl ParticleCloth {
             wind_age: u32::MAX,
             force: Vec3::ZERO,
             owed: 0.0,
+            tick_start: TickStart::default(),
             undone: 0,
             parts: 1,
         };
@@ -417,29 +435,28 @@ impl ParticleCloth {
             }
             self.wind_age += 1;
             // More substeps while the yarns could not be held within STRETCH_TOLERANCE (gales,
-            // huge gravity), fewer again once they are well within it.
+            // huge gravity), fewer again once they are well within it; a tick that left an
+            // edge stretched past RETRY_STRAIN is simulated again in twice the substeps.
             let most = ParticleCloth::MAX_SUBSTEPS;
-            let parts = self.parts.max(self.min_substeps).clamp(1, most);
-            let h = tick / parts as f32;
-            let mut worst = 0.0f32;
-            for _ in 0..parts {
-                self.loads();
-                let force = self.force;
-                let strain = self.substep(h, gravity);
-                if !(strain <= STRETCH_LIMIT && self.positions.iter().all(|p| p.is_finite())) {
-                    // The undone substep's loads are not reported either.
-                    self.undo();
-                    self.force = force;
+            let mut parts = self.parts.max(self.min_substeps).clamp(1, most);
+            let worst = loop {
+                if parts < most {
+                    self.save_tick();
                 }
-                // A NaN strain counts as the worst (f32::max would skip it).
-                if strain.is_nan() || strain > worst {
-                    worst = strain;
+                let worst = self.substeps(tick / parts as f32, parts, gravity);
+                if (worst > RETRY_STRAIN || worst.is_nan()) && parts < most {
+                    self.restore_tick();
+                    parts = (parts * 2).min(most);
+                } else {
+                    break worst;
                 }
-            }
+            };
             if worst > STRETCH_TOLERANCE || worst.is_nan() {
                 self.parts = (parts * 2).min(most);
             } else if worst < 0.25 * STRETCH_TOLERANCE {
                 self.parts = (parts / 2).max(1);
+            } else {
+                self.parts = parts;
             }
         }
         self.force /= count * tick;
@@ -450,6 +467,49 @@ impl ParticleCloth {
 }
 
 impl ParticleCloth {
+    /// `parts` substeps of `h`; returns the largest relative stretch of a yarn edge they left.
+    fn substeps(&mut self, h: f32, parts: u32, gravity: Vec3) -> f32 {
+        let mut worst = 0.0f32;
+        for _ in 0..parts {
+            self.loads();
+            let force = self.force;
+            let strain = self.substep(h, gravity);
+            if !(strain <= STRETCH_LIMIT && self.positions.iter().all(|p| p.is_finite())) {
+                // The undone substep's loads are not reported either.
+                self.undo();
+                self.force = force;
+            }
+            // A NaN strain counts as the worst (f32::max would skip it).
+            if strain.is_nan() || strain > worst {
+                worst = strain;
+            }
+        }
+        worst
+    }
+
+    /// Keeps the state a tick starts from, to simulate it again.
+    fn save_tick(&mut self) {
+        let start = &mut self.tick_start;
+        for (kept, now) in [
+            (&mut start.positions, &self.positions),
+            (&mut start.velocities, &self.velocities),
+            (&mut start.normals, &self.normals),
+        ] {
+            kept.clear();
+            kept.extend_from_slice(now);
+        }
+        (start.force, start.undone) = (self.force, self.undone);
+    }
+
+    /// Puts the cloth back as [`Self::save_tick`] kept it.
+    fn restore_tick(&mut self) {
+        let start = &self.tick_start;
+        self.positions.copy_from_slice(&start.positions);
+        self.velocities.copy_from_slice(&start.velocities);
+        self.normals.copy_from_slice(&start.normals);
+        (self.force, self.undone) = (start.force, start.undone);
+    }
+
     /// Puts the nodes back where the last substep found them, at rest (see [`STRETCH_LIMIT`]).
     fn undo(&mut self) {
         self.positions.copy_from_slice(&self.previous);
