@@ -196,6 +196,31 @@ fn cloud(c: &mut Criterion) {
             BatchSize::LargeInput,
         )
     });
+    // The same in four lanes where the default is eight (AVX2): what the wider lanes bring.
+    if bevy_windfall::widest_lanes() == 8 {
+        bevy_windfall::set_lane_width(4);
+        group.bench_function("leaf_cloud_with_wind_one_thread_4_lanes", |b| {
+            b.iter_batched_ref(
+                || full.clone(),
+                |leaves| leaves.step(&step(&model, &wind, None), None),
+                BatchSize::LargeInput,
+            )
+        });
+        group.bench_function("leaf_cloud_still_air_one_thread_4_lanes", |b| {
+            b.iter_batched_ref(
+                || full.clone(),
+                |leaves| {
+                    let still = CloudStep {
+                        wind: None,
+                        ..step(&model, &wind, None)
+                    };
+                    leaves.step(&still, None)
+                },
+                BatchSize::LargeInput,
+            )
+        });
+        bevy_windfall::set_lanes(true);
+    }
     group.bench_function("baseline_drag_particles_with_wind_one_thread", |b| {
         b.iter_batched_ref(
             || particles.clone(),

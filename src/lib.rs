@@ -284,7 +284,7 @@ mod portable;
 #[cfg(feature = "render")]
 pub mod render;
 #[doc(hidden)]
-pub use portable::set_lanes;
+pub use portable::{set_lane_width, set_lanes, widest_lanes};
 mod plugins;
 pub mod schedule;
 pub mod spectrum;

@@ -96,7 +96,7 @@ fn step_objects(
         model: &model,
         air: wind.map_or(Air::Still, Air::Field),
         focus: crate::lod::focus(&foci),
-        lanes: crate::portable::lanes_enabled(),
+        width: crate::portable::lane_width(),
         recycle_after: None,
     };
     let pool = ComputeTaskPool::try_get().map(|p| &**p);

@@ -16,32 +16,39 @@ pub(crate) struct V3<L> {
 }
 
 impl<L: Lane> V3<L> {
+    #[inline(always)]
     pub fn new(x: L, y: L, z: L) -> Self {
         Self { x, y, z }
     }
 
+    #[inline(always)]
     pub fn splat(v: Vec3) -> Self {
         Self::new(L::splat(v.x), L::splat(v.y), L::splat(v.z))
     }
 
+    #[inline(always)]
     pub fn add(self, o: Self) -> Self {
         Self::new(self.x + o.x, self.y + o.y, self.z + o.z)
     }
 
+    #[inline(always)]
     pub fn sub(self, o: Self) -> Self {
         Self::new(self.x - o.x, self.y - o.y, self.z - o.z)
     }
 
+    #[inline(always)]
     pub fn scale(self, k: L) -> Self {
         Self::new(self.x * k, self.y * k, self.z * k)
     }
 
     /// (x² + y²) + z².
+    #[inline(always)]
     pub fn length_squared(self) -> L {
         (self.x * self.x + self.y * self.y) + self.z * self.z
     }
 
     /// `a` where `mask`, else `b`.
+    #[inline(always)]
     pub fn select(mask: L::Mask, a: Self, b: Self) -> Self {
         Self::new(
             L::select(mask, a.x, b.x),
@@ -61,15 +68,18 @@ pub(crate) struct Q<L> {
 }
 
 impl<L: Lane> Q<L> {
+    #[inline(always)]
     pub fn new(x: L, y: L, z: L, w: L) -> Self {
         Self { x, y, z, w }
     }
 
+    #[inline(always)]
     pub fn identity() -> Self {
         Self::new(L::splat(0.0), L::splat(0.0), L::splat(0.0), L::splat(1.0))
     }
 
     /// The Hamilton product `self · o`, each component in one fixed order.
+    #[inline(always)]
     pub fn mul(self, o: Self) -> Self {
         let (x0, y0, z0, w0) = (self.x, self.y, self.z, self.w);
         let (x1, y1, z1, w1) = (o.x, o.y, o.z, o.w);
@@ -82,12 +92,14 @@ impl<L: Lane> Q<L> {
     }
 
     /// ((x² + y²) + z²) + w².
+    #[inline(always)]
     pub fn length_squared(self) -> L {
         ((self.x * self.x + self.y * self.y) + self.z * self.z) + self.w * self.w
     }
 
     /// Divided by its length (a zero quaternion stays zero, as glam's gives NaN: callers keep
     /// their quaternions of unit length).
+    #[inline(always)]
     pub fn normalize(self) -> Self {
         let length = self.length_squared().sqrt();
         let inv = L::select(
@@ -99,12 +111,14 @@ impl<L: Lane> Q<L> {
     }
 
     /// The rotation by `angle` about the unit `axis` (x, y, z).
+    #[inline(always)]
     pub fn from_axis_angle(axis: V3<L>, angle: L) -> Self {
         let (s, c) = sin_cos(angle * L::splat(0.5));
         Self::new(axis.x * s, axis.y * s, axis.z * s, c)
     }
 
     /// `a` where `mask`, else `b`.
+    #[inline(always)]
     pub fn select(mask: L::Mask, a: Self, b: Self) -> Self {
         Self::new(
             L::select(mask, a.x, b.x),
@@ -115,11 +129,13 @@ impl<L: Lane> Q<L> {
     }
 
     /// The conjugate: the inverse of a unit quaternion.
+    #[inline(always)]
     pub fn conjugate(self) -> Self {
         Self::new(-self.x, -self.y, -self.z, self.w)
     }
 
     /// `v` turned by this unit quaternion: v (w² − b·b) + b 2(v·b) + (b × v) 2w, b = (x, y, z).
+    #[inline(always)]
     pub fn rotate(self, v: V3<L>) -> V3<L> {
         let b = V3::new(self.x, self.y, self.z);
         let two = L::splat(2.0);
@@ -136,6 +152,7 @@ impl<L: Lane> Q<L> {
     }
 
     /// The rotation by `angle` about +Y.
+    #[inline(always)]
     pub fn from_rotation_y(angle: L) -> Self {
         let (s, c) = sin_cos(angle * L::splat(0.5));
         let zero = L::splat(0.0);

@@ -1,5 +1,6 @@
 //! One number, or several in SIMD lanes: the [`Lane`] trait the step arithmetic is written
-//! against once, implemented for `f32` (one lane) and `wide::f32x4` (four). Every operation is a
+//! against once, implemented for `f32` (one lane), `wide::f32x4` (four) and, on x86-64 with
+//! AVX2, [`F8`](super::avx::F8) (eight). Every operation is a
 //! plain IEEE-754 one, the same in every lane and on every machine (no fused multiply-add, no
 //! approximate reciprocal, selects instead of branches), so a value computed in a lane has the
 //! bits the scalar code gives it.
@@ -7,6 +8,9 @@
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 use wide::{f32x4, i32x4, u32x4};
+
+/// The most lanes any [`Lane`] has: the size of arrays that hold one thing a lane.
+pub(crate) const MAX_WIDTH: usize = 8;
 
 /// A number or a few in lanes, with the operations the step needs.
 pub(crate) trait Lane:
@@ -63,9 +67,9 @@ pub(crate) trait Lane:
     fn not(mask: Self::Mask) -> Self::Mask;
     /// A mask with lane `k` set where `f(k)`.
     fn mask_from_fn(f: impl FnMut(usize) -> bool) -> Self::Mask;
-    /// The lanes truncated toward zero to integers (the first [`Lane::WIDTH`] of four), for
-    /// indices: callers clamp them (out of range and NaN differ by instruction set).
-    fn to_i32s(self) -> [i32; 4];
+    /// The lanes truncated toward zero to integers (the first [`Lane::WIDTH`] of
+    /// [`MAX_WIDTH`]), for indices: NaN gives 0, out of range the nearest end.
+    fn to_i32s(self) -> [i32; MAX_WIDTH];
     /// Four columns from one row of four numbers a lane (`row(k)` for lane `k`): a transpose.
     fn columns(row: impl FnMut(usize) -> [f32; 4]) -> [Self; 4];
 
@@ -176,8 +180,8 @@ impl Lane for f32 {
         row(0)
     }
     #[inline]
-    fn to_i32s(self) -> [i32; 4] {
-        [self as i32; 4]
+    fn to_i32s(self) -> [i32; MAX_WIDTH] {
+        [self as i32; MAX_WIDTH]
     }
 }
 
@@ -280,7 +284,8 @@ impl Lane for f32x4 {
         f32x4::transpose([row(0), row(1), row(2), row(3)].map(f32x4::from))
     }
     #[inline]
-    fn to_i32s(self) -> [i32; 4] {
-        self.trunc_int().to_array()
+    fn to_i32s(self) -> [i32; MAX_WIDTH] {
+        let four = self.trunc_int().to_array();
+        std::array::from_fn(|k| if k < 4 { four[k] } else { 0 })
     }
 }

@@ -6,26 +6,54 @@
 //! crate computes rarely (a new swing, a Markov step, the database at start-up) uses the
 //! pure-Rust `libm`, which is portable in the same way.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod avx;
 pub(crate) mod geometry;
 pub(crate) mod lane;
 pub(crate) mod transcendental;
 
-/// Whether the falls' usual steps go several at a time in SIMD lanes (on unless turned off):
-/// their bits are the same either way, so this only changes the speed.
-static LANES: AtomicBool = AtomicBool::new(true);
+/// The most falls a step may put side by side in SIMD lanes (8 unless lowered): their bits are
+/// the same at every width, so this only changes the speed.
+static WIDTH: AtomicUsize = AtomicUsize::new(8);
 
-/// Turns the lanes off (`false`) or on: for tests and benchmarks that compare the two, which
-/// must give the same bits. Not part of the crate's interface.
+/// Turns the lanes off (`false`: one fall at a time) or on (the widest this CPU has): for tests
+/// and benchmarks that compare the two, which must give the same bits. Not part of the crate's
+/// interface.
 #[doc(hidden)]
 pub fn set_lanes(on: bool) {
-    LANES.store(on, Ordering::Relaxed);
+    set_lane_width(if on { 8 } else { 1 });
 }
 
-/// Whether the lanes are on.
-pub(crate) fn lanes_enabled() -> bool {
-    LANES.load(Ordering::Relaxed)
+/// The most falls a step may put side by side: 1, 4 or 8 (others round down to one of those;
+/// 8 takes effect only where the CPU has AVX2, else 4). For tests and benchmarks that compare
+/// widths, which must give the same bits. Not part of the crate's interface.
+#[doc(hidden)]
+pub fn set_lane_width(width: usize) {
+    WIDTH.store(width, Ordering::Relaxed);
+}
+
+/// The lane width the falls' steps use now: 1, 4 or 8 (8 only on x86-64 with AVX2, checked
+/// at run time).
+pub(crate) fn lane_width() -> usize {
+    match WIDTH.load(Ordering::Relaxed) {
+        0 | 1 => 1,
+        2..=7 => 4,
+        _ if widest_lanes() == 8 => 8,
+        _ => 4,
+    }
+}
+
+/// The widest lanes this CPU runs: 8 with AVX2 (x86-64), else 4. Not part of the crate's
+/// interface.
+#[doc(hidden)]
+pub fn widest_lanes() -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if avx::has_avx2() {
+        return 8;
+    }
+    4
 }
 
 #[cfg(test)]

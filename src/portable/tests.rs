@@ -167,3 +167,78 @@ fn lanes_give_the_bits_of_one() {
         assert_eq!(a, clamped.map(|v| acos(v).to_bits()), "{x:?}");
     }
 }
+
+/// Eight AVX2 lanes give each lane the bits of one (where this CPU has AVX2): the kernels, the
+/// square root and division, `frexp`, the truncation to indices (NaN, infinities and
+/// out-of-range values included) and a comparison's select.
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn eight_lanes_give_the_bits_of_one() {
+    use super::avx::{F8, has_avx2};
+    use super::lane::Lane;
+    if !has_avx2() {
+        eprintln!("no AVX2 on this CPU: eight lanes are not used here");
+        return;
+    }
+    let inputs: Vec<f32> = sweep(0.0, 3.0e4, 7919)
+        .flat_map(|v| {
+            [
+                v,
+                -v,
+                1.0 / (v + 0.5),
+                f32::NAN,
+                f32::INFINITY,
+                0.5 * v.sqrt(),
+                v * 1e-40,
+                -v * 3.0e9,
+            ]
+        })
+        .collect();
+    for chunk in inputs.chunks_exact(8) {
+        let x: [f32; 8] = chunk.try_into().unwrap();
+        let lanes = F8::from_fn(|k| x[k]);
+        let bits = |v: F8| std::array::from_fn::<u32, 8, _>(|k| v.get(k).to_bits());
+        let one = |f: &dyn Fn(f32) -> f32| x.map(|v| f(v).to_bits());
+        let (s, c) = sin_cos(lanes);
+        assert_eq!(bits(s), one(&|v| sin_cos(v).0), "{x:?}");
+        assert_eq!(bits(c), one(&|v| sin_cos(v).1), "{x:?}");
+        assert_eq!(bits(ln(lanes)), one(&ln), "{x:?}");
+        assert_eq!(bits(floor(lanes)), one(&floor), "{x:?}");
+        assert_eq!(bits(round(lanes)), one(&round), "{x:?}");
+        assert_eq!(bits(lanes.sqrt()), one(&f32::sqrt), "{x:?}");
+        assert_eq!(bits(-lanes), one(&|v| -v), "{x:?}");
+        assert_eq!(bits(lanes.abs()), one(&f32::abs), "{x:?}");
+        let y = x.map(|v| 0.37 - v);
+        let ys = F8::from_fn(|k| y[k]);
+        assert_eq!(
+            bits(ys / lanes),
+            std::array::from_fn(|k| (y[k] / x[k]).to_bits()),
+            "{x:?}"
+        );
+        let a = bits(atan2(ys, lanes));
+        assert_eq!(a, std::array::from_fn(|k| atan2(y[k], x[k]).to_bits()));
+        let clamped = x.map(|v| (v * 1e-4).clamp(-1.0, 1.0));
+        let a = bits(acos(F8::from_fn(|k| clamped[k])));
+        assert_eq!(a, clamped.map(|v| acos(v).to_bits()), "{x:?}");
+        let positive = x.map(|v| v.abs().max(f32::from_bits(1)).min(f32::MAX));
+        let (m, e) = F8::from_fn(|k| positive[k]).frexp();
+        for (k, v) in positive.iter().enumerate() {
+            let (m1, e1) = v.frexp();
+            assert_eq!(
+                (m.get(k).to_bits(), e.get(k).to_bits()),
+                (m1.to_bits(), e1.to_bits())
+            );
+        }
+        let four: [i32; 8] = std::array::from_fn(|k| {
+            let half = f32x4::from(std::array::from_fn::<f32, 4, _>(|j| x[k / 4 * 4 + j]));
+            half.to_i32s()[k % 4]
+        });
+        assert_eq!(lanes.to_i32s(), four, "{x:?}");
+        assert_eq!(lanes.to_i32s(), x.map(|v| v as i32), "{x:?}");
+        let picked = F8::select(lanes.lt(ys), lanes, ys);
+        assert_eq!(
+            bits(picked),
+            std::array::from_fn(|k| if x[k] < y[k] { x[k] } else { y[k] }.to_bits())
+        );
+    }
+}

@@ -12,7 +12,7 @@ use super::lane::Lane;
 
 /// The nearest integer to `x` (ties to even, the same in every lane and on every machine),
 /// for |x| < 2²³; larger or non-finite values are returned as they are.
-#[inline]
+#[inline(always)]
 pub(crate) fn round<L: Lane>(x: L) -> L {
     let big = L::splat(8_388_608.0);
     let c = L::select(x.lt(L::splat(0.0)), -big, big);
@@ -21,14 +21,14 @@ pub(crate) fn round<L: Lane>(x: L) -> L {
 }
 
 /// `value` held to [low, high] (a NaN stays NaN), the same in every lane.
-#[inline]
+#[inline(always)]
 pub(crate) fn clamp<L: Lane>(value: L, low: L, high: L) -> L {
     let v = L::select(value.lt(low), low, value);
     L::select(v.gt(high), high, v)
 }
 
 /// The largest integer not above `x` (non-finite values as they are).
-#[inline]
+#[inline(always)]
 pub(crate) fn floor<L: Lane>(x: L) -> L {
     let r = round(x);
     r - L::select(r.gt(x), L::splat(1.0), L::splat(0.0))
@@ -47,7 +47,7 @@ const REDUCED: f32 = 1.0e4;
 /// sin x and cos x: within 2 ulp of the correctly rounded value for |x| ≤ 10⁴ (a curve's phase
 /// in any fall of a few minutes); beyond, lane by lane, the pure-Rust `libm::sincosf` (Payne
 /// and Hanek's exact reduction), just as portable. NaN and infinities give NaN.
-#[inline]
+#[inline(always)]
 pub(crate) fn sin_cos<L: Lane>(x: L) -> (L, L) {
     let (s, c) = sin_cos_near(x);
     let far = x.abs().gt(L::splat(REDUCED));
@@ -64,7 +64,7 @@ pub(crate) fn sin_cos<L: Lane>(x: L) -> (L, L) {
 }
 
 /// [`sin_cos`] for |x| ≤ 10⁴ (NaN and infinities give NaN).
-#[inline]
+#[inline(always)]
 fn sin_cos_near<L: Lane>(x: L) -> (L, L) {
     // Within ±0.75 (most calls: half angles of tilts and turns) the reduction below leaves x
     // as it is (k = 0, r = x exactly, no turn or sign): the polynomials alone, the same bits.
@@ -79,7 +79,7 @@ fn sin_cos_near<L: Lane>(x: L) -> (L, L) {
 /// call where the argument is bounded by construction (half angles, a curve's phase reduced
 /// to one turn). Beyond 10⁴ it is not accurate: callers bound their arguments. NaN and
 /// infinities give NaN.
-#[inline]
+#[inline(always)]
 pub(crate) fn sin_cos_bounded<L: Lane>(x: L) -> (L, L) {
     let k = round(x * L::splat(2.0 / PI));
     let r = (((x - k * L::splat(PIO2_1)) - k * L::splat(PIO2_2)) - k * L::splat(PIO2_3))
@@ -95,7 +95,7 @@ pub(crate) fn sin_cos_bounded<L: Lane>(x: L) -> (L, L) {
 }
 
 /// Cephes sinf and cosf on [−π/4, π/4].
-#[inline]
+#[inline(always)]
 fn sin_cos_poly<L: Lane>(r: L) -> (L, L) {
     let z = r * r;
     let s = ((L::splat(-1.951_529_6e-4) * z + L::splat(8.332_161e-3)) * z
@@ -114,7 +114,7 @@ fn sin_cos_poly<L: Lane>(r: L) -> (L, L) {
 
 /// ln x: within 1 ulp for every positive finite x (subnormals included); 0 gives −∞, +∞
 /// gives +∞, a negative number or NaN gives NaN.
-#[inline]
+#[inline(always)]
 pub(crate) fn ln<L: Lane>(x: L) -> L {
     let positive = L::and(x.gt(L::splat(0.0)), x.lt(L::splat(f32::INFINITY)));
     let (m, e) = L::select(positive, x, L::splat(1.0)).frexp();
@@ -150,7 +150,7 @@ pub(crate) fn ln<L: Lane>(x: L) -> L {
 }
 
 /// atan t for t ≥ 0 (Cephes atanf: reduced to |t| ≤ tan π/8 by the identities of π/4 and π/2).
-#[inline]
+#[inline(always)]
 fn atan_positive<L: Lane>(t: L) -> L {
     let big = t.gt(L::splat(2.414_213_5));
     let middle = L::and(t.gt(L::splat(0.414_213_57)), t.le(L::splat(2.414_213_5)));
@@ -173,7 +173,7 @@ fn atan_positive<L: Lane>(t: L) -> L {
 }
 
 /// Whether `v` has its sign bit set (−0 included; not NaN).
-#[inline]
+#[inline(always)]
 fn negative<L: Lane>(v: L) -> L::Mask {
     let zero = L::splat(0.0);
     L::or(v.lt(zero), L::and(v.eq(zero), (L::splat(1.0) / v).lt(zero)))
@@ -181,7 +181,7 @@ fn negative<L: Lane>(v: L) -> L::Mask {
 
 /// atan2(y, x), the angle of (x, y) in [−π, π]: within 3 ulp; zeros and infinities as the
 /// platform's (IEEE-754's atan2), a NaN gives NaN.
-#[inline]
+#[inline(always)]
 pub(crate) fn atan2<L: Lane>(y: L, x: L) -> L {
     let (ay, ax) = (y.abs(), x.abs());
     let infinite = L::and(
@@ -197,7 +197,7 @@ pub(crate) fn atan2<L: Lane>(y: L, x: L) -> L {
 }
 
 /// asin of 0 ≤ a ≤ 0.5 (Cephes asinf's polynomial).
-#[inline]
+#[inline(always)]
 fn asin_small<L: Lane>(a: L) -> L {
     let z = a * a;
     let p = (((L::splat(4.216_32e-2) * z + L::splat(2.418_131e-2)) * z + L::splat(4.547_002_6e-2))
@@ -209,7 +209,7 @@ fn asin_small<L: Lane>(a: L) -> L {
 }
 
 /// acos x for x in [−1, 1], within 2 ulp (Cephes acosf); outside or NaN, NaN.
-#[inline]
+#[inline(always)]
 pub(crate) fn acos<L: Lane>(x: L) -> L {
     let half = L::splat(0.5);
     let outside = L::or(x.gt(L::splat(1.0)), x.lt(L::splat(-1.0)));

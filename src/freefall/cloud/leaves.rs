@@ -147,7 +147,7 @@ impl CloudLeaves {
             model: step.model,
             air: step.wind.map_or(Air::Still, Air::Field),
             focus: step.focus,
-            lanes: crate::portable::lanes_enabled(),
+            width: crate::portable::lane_width(),
             recycle_after: self.recycle_after,
         };
         let done = self.store.step(step.dt, &driver, pool);

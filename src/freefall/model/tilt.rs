@@ -42,6 +42,7 @@ impl WindTilt {
 
 /// Eq. 15's tilt of the orientation: θ = W N with N = |u| / (U_ref + |u|), leaning downwind,
 /// times `factor` (see [`WindTilt`]).
+#[inline(always)]
 pub(crate) fn wind_tilt<L: Lane>(max_angle: L, reference_speed: L, wind: V3<L>, factor: L) -> Q<L> {
     let horizontal = (wind.x * wind.x + wind.z * wind.z).sqrt();
     let speed = wind.length_squared().sqrt();

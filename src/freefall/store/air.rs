@@ -6,7 +6,7 @@ use bevy::math::Vec3;
 use super::block::{Block, ConstantStorage, W};
 use crate::freefall::model::release::FallRelease;
 use crate::portable::geometry::V3;
-use crate::portable::lane::Lane;
+use crate::portable::lane::{Lane, MAX_WIDTH};
 use crate::wind::{Moment, MoverFlow, WindField};
 
 /// The air the falls move in.
@@ -83,6 +83,7 @@ impl<'a> Reading<'a> {
 
     /// The air's velocity at lanes `k..` of `block` (where each fall is), held to
     /// [`FallRelease::MAX_SPEED`].
+    #[inline(always)]
     pub(super) fn lanes<L: Lane, K: ConstantStorage>(&self, block: &Block<K>, k: usize) -> V3<L> {
         let h = &block.hot;
         match self {
@@ -103,6 +104,7 @@ impl<'a> Reading<'a> {
 
 /// `v` held to `max` long (a non-finite vector: zero), lane by lane: the usual case with no
 /// division, the rest one lane at a time (overflow-safe).
+#[inline(always)]
 fn clamp_speed<L: Lane>(v: V3<L>, max: f32) -> V3<L> {
     let squared = v.length_squared();
     let ok = L::and(squared.gt(L::splat(0.0)), squared.le(L::splat(max * max)));
@@ -117,7 +119,8 @@ fn clamp_speed<L: Lane>(v: V3<L>, max: f32) -> V3<L> {
             crate::guard::clamp_length(Vec3::new(v.x.get(j), v.y.get(j), v.z.get(j)), max)
         }
     };
-    let lanes: [Vec3; 4] = std::array::from_fn(|j| if j < L::WIDTH { each(j) } else { Vec3::ZERO });
+    let lanes: [Vec3; MAX_WIDTH] =
+        std::array::from_fn(|j| if j < L::WIDTH { each(j) } else { Vec3::ZERO });
     V3::new(
         L::from_fn(|j| lanes[j].x),
         L::from_fn(|j| lanes[j].y),

@@ -10,7 +10,13 @@ use crate::freefall::model::piece::Piece;
 use crate::lod::LodTiers;
 use crate::portable::lane::Lane;
 
-/// Falls a block holds: the widest lanes the step uses.
+/// Falls a block holds: the widest lanes the step may use on this target (eight on x86-64,
+/// where AVX2 may be found at run time; four elsewhere). A fall's bits do not depend on it.
+#[cfg(target_arch = "x86_64")]
+pub(crate) const W: usize = 8;
+/// Falls a block holds: the widest lanes the step may use on this target (eight on x86-64,
+/// where AVX2 may be found at run time; four elsewhere). A fall's bits do not depend on it.
+#[cfg(not(target_arch = "x86_64"))]
 pub(crate) const W: usize = 4;
 
 /// Declares a struct of `[f32; W]` columns and a copy of one lane of all of them.
@@ -135,7 +141,7 @@ pub(crate) struct SharedConstants(pub FallConstants);
 impl ConstantStorage for SharedConstants {
     type Lanes = ();
 
-    #[inline]
+    #[inline(always)]
     fn load<L: Lane>(&self, _: &(), _: usize) -> LaneConstants<L> {
         let c = &self.0;
         LaneConstants {
@@ -162,7 +168,7 @@ pub(crate) struct PerFallConstants;
 impl ConstantStorage for PerFallConstants {
     type Lanes = ConstantColumns;
 
-    #[inline]
+    #[inline(always)]
     fn load<L: Lane>(&self, lanes: &ConstantColumns, k: usize) -> LaneConstants<L> {
         LaneConstants {
             descent_speed: L::load(&lanes.descent_speed, k),

@@ -15,9 +15,6 @@ use bevy::math::Vec3;
 use bevy::tasks::TaskPool;
 use wide::f32x4;
 
-/// A block's lanes.
-type Lanes = f32x4;
-
 use super::air::Reading;
 use super::block::{Block, ConstantStorage, W};
 use super::clock::FallClock;
@@ -133,15 +130,21 @@ fn step_blocks<K: ConstantStorage>(
     // Only the movers that reach this chunk's falls.
     let near = air.around(blocks, cold.len());
     let air = near.as_ref().unwrap_or(air);
-    for (b, block) in blocks.iter_mut().enumerate() {
+    for b in 0..blocks.len() {
         let first = b * W;
         if first >= cold.len() {
             break;
         }
         let live = (cold.len() - first).min(W);
+        // The next block's cache lines on their way while this one is stepped: a cloud of
+        // 100 000 leaves streams more bytes a step than the caches hold (docs/performance.md).
+        #[cfg(target_arch = "x86_64")]
+        if let Some(next) = blocks.get(b + 1) {
+            crate::portable::avx::prefetch(next);
+        }
         step_block(
             kind,
-            block,
+            &mut blocks[b],
             &mut cold[first..first + live],
             band,
             step,
@@ -177,18 +180,30 @@ fn step_block<K: ConstantStorage>(
     let mut outcomes = [StepOutcome::Falling; W];
     // Which falls went one at a time (only their cold state is read again).
     let mut alone = [false; W];
-    if step.lanes {
-        step_lanes(
+    if step.width > 1 {
+        let mut lanes = Lanes {
             kind,
             block,
             cold,
             step,
             air,
             clock,
-            &waited,
-            &mut outcomes,
-            &mut alone,
-        );
+            waited: &waited,
+            outcomes: &mut outcomes,
+            alone: &mut alone,
+        };
+        #[cfg(target_arch = "x86_64")]
+        if step.width == 8 && crate::portable::avx::has_avx2() {
+            // SAFETY: this CPU has AVX2 (checked just above).
+            #[allow(unsafe_code)]
+            unsafe {
+                lanes.eight()
+            };
+        } else {
+            lanes.four();
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        lanes.four();
     } else {
         for (j, cold) in cold.iter_mut().enumerate() {
             let wind = air.lanes::<f32, K>(block, j).vec3();
@@ -230,13 +245,13 @@ fn step_block<K: ConstantStorage>(
     // next step on that tier, or the step just taken if longer.
     let Some(focus) = step.focus else {
         // No focus: every fall at full detail, every step.
-        let next = Lanes::splat(clock.last_dt);
-        let waited = Lanes::from(waited);
-        Lanes::select(next.gt(waited), next, waited).store_where(
-            Lanes::mask_from_fn(|j| j < live),
-            &mut block.hot.span,
-            0,
-        );
+        for (j, span) in block.hot.span.iter_mut().enumerate().take(live) {
+            *span = if clock.last_dt > waited[j] {
+                clock.last_dt
+            } else {
+                waited[j]
+            };
+        }
         if band != 0 {
             report
                 .moves
@@ -262,13 +277,71 @@ fn step_block<K: ConstantStorage>(
     }
 }
 
-/// [`step_block`] with lanes: the wind read for the block at once; the falls whose piece goes
-/// on and those at rest in lanes; the others one at a time ([`Slot::prepare`]), their move and
-/// orientation finished in lanes with the usual ones.
+/// What [`step_block`]'s lane pass reads and writes: the block, its live falls' cold state
+/// (`cold`), the step and the time since each fall's last step; each fall's outcome and whether
+/// it went one at a time.
+struct Lanes<'a, 'b, K: ConstantStorage> {
+    kind: &'a K,
+    block: &'a mut Block<K>,
+    cold: &'a mut [Cold],
+    step: &'a Step<'b>,
+    air: &'a Reading<'b>,
+    clock: &'a FallClock,
+    waited: &'a [f32; W],
+    outcomes: &'a mut [StepOutcome; W],
+    alone: &'a mut [bool; W],
+}
+
+impl<K: ConstantStorage> Lanes<'_, '_, K> {
+    /// The block in passes of four lanes (two where a block holds eight).
+    #[inline(never)]
+    fn four(&mut self) {
+        // Each pass with its offset a constant (no bounds checks in the pass).
+        self.pass::<f32x4>(0);
+        if W > 4 && self.cold.len() > 4 {
+            self.pass::<f32x4>(4);
+        }
+    }
+
+    /// The block in one pass of eight lanes, compiled for AVX2: the pass's generic arithmetic
+    /// is inlined into this function (each of its functions is `#[inline(always)]`) and takes
+    /// its instructions.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(never)]
+    #[target_feature(enable = "avx2")]
+    fn eight(&mut self) {
+        self.pass::<crate::portable::avx::F8>(0);
+    }
+
+    /// The falls in lanes `k..k + L::WIDTH`: the wind read for them at once; the falls whose
+    /// piece goes on and those at rest in lanes; the others one at a time
+    /// ([`Slot::prepare`]), their move and orientation finished in lanes with the usual ones.
+    #[inline(always)]
+    fn pass<L: Lane>(&mut self, k: usize) {
+        let Lanes {
+            kind,
+            ref mut block,
+            ref mut cold,
+            step,
+            air,
+            clock,
+            waited,
+            ref mut outcomes,
+            ref mut alone,
+        } = *self;
+        pass::<L, K>(
+            kind, block, k, cold, step, air, clock, waited, outcomes, alone,
+        );
+    }
+}
+
+/// [`Lanes::pass`], with what it reads and writes spelled out.
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn step_lanes<K: ConstantStorage>(
+fn pass<L: Lane, K: ConstantStorage>(
     kind: &K,
     block: &mut Block<K>,
+    k: usize,
     cold: &mut [Cold],
     step: &Step,
     air: &Reading,
@@ -277,53 +350,57 @@ fn step_lanes<K: ConstantStorage>(
     outcomes: &mut [StepOutcome; W],
     alone: &mut [bool; W],
 ) {
-    type L = Lanes;
     let live = cold.len();
+    let lanes = k..(k + L::WIDTH).min(live);
     let db = step.model.database();
-    let wind = air.lanes::<L, K>(block, 0);
-    let c = kind.load::<L>(&block.consts, 0);
+    let wind = air.lanes::<L, K>(block, k);
+    let c = kind.load::<L>(&block.consts, k);
     let half = L::splat(0.5);
-    let dt = L::from(*waited);
+    let dt = L::load(waited, k);
     let h = &block.hot;
-    let span = L::load(&h.span, 0);
+    let span = L::load(&h.span, k);
     let on_time = L::or(span.le(L::splat(0.0)), dt.ge(span * L::splat(1.0 - 1e-3)));
     let plain = L::and(
-        L::and(L::mask_from_fn(|j| j < live), on_time),
-        L::load(&h.plain, 0).gt(half),
+        L::and(L::mask_from_fn(|j| k + j < live), on_time),
+        L::load(&h.plain, k).gt(half),
     );
-    let landed = L::load(&h.landed, 0).gt(half);
-    let t = L::load(&h.t, 0) + dt;
-    let go = L::and(L::and(plain, L::not(landed)), t.lt(L::load(&h.duration, 0)));
+    let landed = L::load(&h.landed, k).gt(half);
+    let t = L::load(&h.t, k) + dt;
+    let go = L::and(L::and(plain, L::not(landed)), t.lt(L::load(&h.duration, k)));
     // Resting where the wind does not lift: the shown curve settles.
     let resting = L::and(
         L::and(plain, landed),
         L::not(kernel::lifts(wind, c.descent_speed)),
     );
     if L::any(resting) {
-        kernel::settle(&mut block.hot, 0, resting, dt);
+        kernel::settle(&mut block.hot, k, resting, dt);
     }
     // The usual sample, for the lanes whose piece goes on.
     let (end, tilt) = if L::any(go) {
-        kernel::sample_piece(block, 0, db, t)
+        kernel::sample_piece(block, k, db, t)
     } else {
         (V3::splat(Vec3::ZERO), Q::identity())
     };
     let h = &block.hot;
-    let offset = V3::new(L::load(&h.ox, 0), L::load(&h.oy, 0), L::load(&h.oz, 0));
-    let delta = kernel::turned((L::load(&h.tc, 0), L::load(&h.ts, 0)), end.sub(offset));
+    let offset = V3::new(L::load(&h.ox, k), L::load(&h.oy, k), L::load(&h.oz, k));
+    let delta = kernel::turned((L::load(&h.tc, k), L::load(&h.ts, k)), end.sub(offset));
     // The others, one at a time: what lanes cannot share.
     let mut moves: [Option<(Vec3, Q<f32>)>; W] = [None; W];
     let mut easings = [None; W];
-    for (j, cold) in cold.iter_mut().enumerate() {
-        if L::mask_get(go, j) {
+    for j in lanes.clone() {
+        if L::mask_get(go, j - k) {
             continue;
         }
-        if L::mask_get(resting, j) {
+        if L::mask_get(resting, j - k) {
             outcomes[j] = StepOutcome::Resting;
             continue;
         }
-        let w = Vec3::new(wind.x.get(j), wind.y.get(j), wind.z.get(j));
-        let mut slot = Slot { block, k: j, cold };
+        let w = Vec3::new(wind.x.get(j - k), wind.y.get(j - k), wind.z.get(j - k));
+        let mut slot = Slot {
+            block,
+            k: j,
+            cold: &mut cold[j],
+        };
         alone[j] = true;
         easings[j] = Some(slot.easing_before(clock, waited[j]));
         match slot.prepare(kind, step, waited[j], w) {
@@ -332,17 +409,17 @@ fn step_lanes<K: ConstantStorage>(
         }
     }
     // The move and the orientation, in lanes, for all that move.
-    let moving = L::or(go, L::mask_from_fn(|j| moves[j].is_some()));
+    let moving = L::or(go, L::mask_from_fn(|j| k + j < W && moves[k + j].is_some()));
     if L::any(moving) {
         let h = &block.hot;
-        let t = L::select(go, t, L::load(&h.t, 0));
+        let t = L::select(go, t, L::load(&h.t, k));
         let offset = V3::select(
             go,
             end,
-            V3::new(L::load(&h.ox, 0), L::load(&h.oy, 0), L::load(&h.oz, 0)),
+            V3::new(L::load(&h.ox, k), L::load(&h.oy, k), L::load(&h.oz, k)),
         );
         let part = |f: fn(&(Vec3, Q<f32>)) -> f32, none: f32| {
-            L::from_fn(|j| moves[j].as_ref().map_or(none, f))
+            L::from_fn(|j| moves.get(k + j).and_then(Option::as_ref).map_or(none, f))
         };
         let delta = V3::select(
             go,
@@ -365,7 +442,7 @@ fn step_lanes<K: ConstantStorage>(
         );
         let landed = kernel::finish(
             &mut block.hot,
-            0,
+            k,
             moving,
             &c,
             t,
@@ -376,9 +453,9 @@ fn step_lanes<K: ConstantStorage>(
             wind,
             L::splat(step.air.reference_speed()),
         );
-        for (j, outcome) in outcomes.iter_mut().enumerate().take(live) {
-            if L::mask_get(moving, j) {
-                *outcome = if L::mask_get(landed, j) {
+        for j in lanes.clone() {
+            if L::mask_get(moving, j - k) {
+                outcomes[j] = if L::mask_get(landed, j - k) {
                     StepOutcome::Landed
                 } else {
                     StepOutcome::Falling
@@ -386,9 +463,14 @@ fn step_lanes<K: ConstantStorage>(
             }
         }
     }
-    for (j, cold) in cold.iter_mut().enumerate() {
+    for j in lanes {
         if let Some(before) = easings[j] {
-            Slot { block, k: j, cold }.easing_after(before, clock);
+            Slot {
+                block,
+                k: j,
+                cold: &mut cold[j],
+            }
+            .easing_after(before, clock);
         }
     }
 }

@@ -28,7 +28,7 @@ pub(crate) struct Motion<L> {
 }
 
 /// `v` turned from the heading frame to the world: by ψ about +Y, from (cos ψ, sin ψ).
-#[inline]
+#[inline(always)]
 pub(crate) fn turned<L: Lane>(turn: (L, L), v: V3<L>) -> V3<L> {
     let (c, s) = turn;
     V3::new(v.x * c + v.z * s, v.y, v.z * c - v.x * s)
@@ -38,7 +38,7 @@ pub(crate) fn turned<L: Lane>(turn: (L, L), v: V3<L>) -> V3<L> {
 /// relaxes toward `wind` by backward Euler, the move is carried in compensated summation (a
 /// step below f32's spacing far from the origin is kept until it adds up), and a fall that
 /// reaches the ground stops on it. Returns which lanes landed.
-#[inline]
+#[inline(always)]
 pub(crate) fn fall_on<L: Lane>(
     m: &mut Motion<L>,
     c: &LaneConstants<L>,
@@ -73,7 +73,7 @@ pub(crate) fn fall_on<L: Lane>(
 
 /// The orientation shown at a step: eq. 15's lean downwind (`factor` of it) times the heading
 /// `yaw` times the plate's tilt in the heading frame.
-#[inline]
+#[inline(always)]
 pub(crate) fn orient<L: Lane>(
     max_angle: L,
     reference_speed: L,
@@ -86,7 +86,7 @@ pub(crate) fn orient<L: Lane>(
 }
 
 /// The heading's rotation about +Y from (cos ψ/2, sin ψ/2).
-#[inline]
+#[inline(always)]
 pub(crate) fn yaw<L: Lane>(half: (L, L)) -> Q<L> {
     let zero = L::splat(0.0);
     Q::new(zero, half.1, zero, half.0)
@@ -112,8 +112,8 @@ macro_rules! store_v3 {
 }
 
 /// Writes `q` into the four columns where `mask`.
-#[inline]
-fn store_q<L: Lane>(q: Q<L>, mask: L::Mask, columns: [&mut [f32; 4]; 4], k: usize) {
+#[inline(always)]
+fn store_q<L: Lane>(q: Q<L>, mask: L::Mask, columns: [&mut [f32; W]; 4], k: usize) {
     let [x, y, z, w] = columns;
     q.x.store_where(mask, x, k);
     q.y.store_where(mask, y, k);
@@ -122,7 +122,7 @@ fn store_q<L: Lane>(q: Q<L>, mask: L::Mask, columns: [&mut [f32; 4]; 4], k: usiz
 }
 
 /// A piece's words of lanes `k..`.
-#[inline]
+#[inline(always)]
 pub(crate) fn words<L: Lane>(h: &Hot, k: usize) -> [L; WORDS] {
     [
         L::load(&h.w0, k),
@@ -140,7 +140,7 @@ pub(crate) fn words<L: Lane>(h: &Hot, k: usize) -> [L; WORDS] {
 }
 
 /// The motion state of lanes `k..`.
-#[inline]
+#[inline(always)]
 pub(crate) fn motion<L: Lane>(h: &Hot, k: usize) -> Motion<L> {
     Motion {
         point: v3!(h, p2x, p2y, p2z, k),
@@ -152,7 +152,7 @@ pub(crate) fn motion<L: Lane>(h: &Hot, k: usize) -> Motion<L> {
 
 /// The piece sampled at piece time `t` for lanes `k..` of `block`: its displacement in the
 /// heading frame and the plate's tilt.
-#[inline]
+#[inline(always)]
 pub(crate) fn sample_piece<L: Lane, K: ConstantStorage>(
     block: &Block<K>,
     k: usize,
@@ -189,7 +189,7 @@ pub(crate) fn swing_end<K: ConstantStorage>(
 
 /// Writes a step's end for the lanes `k..` where `mask`: the point and orientation appended to
 /// the control points, the rest of the motion, the piece's clock and offset, the landing.
-#[inline]
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn commit<L: Lane>(
     h: &mut Hot,
@@ -275,7 +275,7 @@ fn write<L: Lane>(
 
 /// Whether `wind` lifts a resting fall of descent speed `u` again: faster than
 /// [`FallRelease::LIFT_OFF_FACTOR`](crate::freefall::model::release::FallRelease::LIFT_OFF_FACTOR) × U.
-#[inline]
+#[inline(always)]
 pub(crate) fn lifts<L: Lane>(wind: V3<L>, u: L) -> L::Mask {
     let least = L::splat(crate::freefall::model::release::FallRelease::LIFT_OFF_FACTOR) * u;
     wind.length_squared().gt(least * least)
@@ -284,7 +284,7 @@ pub(crate) fn lifts<L: Lane>(wind: V3<L>, u: L) -> L::Mask {
 /// A resting fall's step for lanes `k..` where `mask`: the shown curve settles on the resting
 /// point (p_{i−2} ← p_{i−1} ← p_i, the orientations likewise) and `dt` more seconds on the
 /// ground.
-#[inline]
+#[inline(always)]
 pub(crate) fn settle<L: Lane>(h: &mut Hot, k: usize, mask: L::Mask, dt: L) {
     let p1 = v3!(h, p1x, p1y, p1z, k);
     let p2 = v3!(h, p2x, p2y, p2z, k);
@@ -308,7 +308,7 @@ pub(crate) fn settle<L: Lane>(h: &mut Hot, k: usize, mask: L::Mask, dt: L) {
 /// The rest of a step for lanes `k..` where `mask`, once the still-fluid displacement `delta`
 /// (world frame) and the plate's `tilt` are known and the piece's clock `t` and offset are
 /// moved on: [`fall_on`] and the orientation. Returns which lanes landed.
-#[inline]
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn finish<L: Lane>(
     h: &mut Hot,

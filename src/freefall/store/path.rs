@@ -124,7 +124,7 @@ impl FallPath {
             model,
             air: Air::Uniform(wind, tilt.reference_speed),
             focus: None,
-            lanes: crate::portable::lanes_enabled(),
+            width: crate::portable::lane_width(),
             recycle_after: None,
         };
         let report = self.store.step(dt, &step, None);

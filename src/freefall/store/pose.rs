@@ -129,7 +129,7 @@ impl<K: ConstantStorage> Store<K> {
     /// on any number).
     pub fn poses(&self, now: f64, pool: Option<&TaskPool>, out: &mut Vec<LeafPose>) {
         out.resize(self.handles(), LeafPose::default());
-        let lanes = crate::portable::lanes_enabled();
+        let lanes = crate::portable::lane_width() > 1;
         for band in &self.bands[..BANDS] {
             let n = band.len();
             let pose_chunk = |c: usize, blocks: &[Block<K>]| {
@@ -177,13 +177,15 @@ fn block_poses<K: ConstantStorage>(
 ) {
     let mut poses = [LeafPose::default(); W];
     if lanes {
-        let s = share::<wide::f32x4, K>(block, 0, now);
-        let (p, q) = smoothed::<wide::f32x4>(&block.hot, 0, s);
-        for (j, pose) in poses.iter_mut().enumerate() {
-            *pose = LeafPose {
-                position: Vec3::new(p.x.get(j), p.y.get(j), p.z.get(j)),
-                rotation: Quat::from_xyzw(q.x.get(j), q.y.get(j), q.z.get(j), q.w.get(j)),
-            };
+        for (k, four) in poses.chunks_mut(4).enumerate().take(cold.len().div_ceil(4)) {
+            let s = share::<wide::f32x4, K>(block, 4 * k, now);
+            let (p, q) = smoothed::<wide::f32x4>(&block.hot, 4 * k, s);
+            for (j, pose) in four.iter_mut().enumerate() {
+                *pose = LeafPose {
+                    position: Vec3::new(p.x.get(j), p.y.get(j), p.z.get(j)),
+                    rotation: Quat::from_xyzw(q.x.get(j), q.y.get(j), q.z.get(j), q.w.get(j)),
+                };
+            }
         }
     } else {
         for (j, pose) in poses.iter_mut().enumerate().take(cold.len()) {

@@ -13,8 +13,9 @@ pub(crate) struct Step<'a> {
     pub air: Air<'a>,
     /// Where levels of detail are measured from (`None`: every fall at full detail).
     pub focus: Option<Focus>,
-    /// Whether falls go several at a time in SIMD lanes (the same bits either way).
-    pub lanes: bool,
+    /// How many falls go side by side in SIMD lanes: 1, 4 or 8 (the same bits at each; 8
+    /// only where [`crate::portable::widest_lanes`] is 8).
+    pub width: usize,
     /// Falls resting this long, s, are reported ([`StepReport::recycle`](super::driver::StepReport::recycle)).
     pub recycle_after: Option<f32>,
 }

@@ -7,7 +7,7 @@ use wide::f32x4;
 use super::WindField;
 use super::profile;
 use crate::portable::geometry::V3;
-use crate::portable::lane::Lane;
+use crate::portable::lane::{Lane, MAX_WIDTH};
 use crate::portable::transcendental::{clamp, floor};
 use crate::spectrum::periodic_lerp;
 use crate::wind::config::{SpatialMode, TemporalMode};
@@ -83,12 +83,14 @@ impl WindField {
 
     /// The wind at `L::WIDTH` points given in lanes at `moment` (from [`Self::moment`]): what
     /// a fall store reads for a block.
+    #[inline(always)]
     pub(crate) fn velocity_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>) -> V3<L> {
         self.read_lanes(moment, points, &self.movers)
     }
 
     /// [`Self::velocity_lanes`] for points that all lie within the box of [`Self::movers_near`]
     /// `movers` came from: the same bits, the far movers skipped.
+    #[inline(always)]
     pub(crate) fn velocity_lanes_among<L: Lane>(
         &self,
         moment: &Moment,
@@ -177,6 +179,7 @@ impl WindField {
     /// The global field (sheltered) plus every local source and the flows of `movers` at
     /// `L::WIDTH` points: the lanes take the log law, the interpolation and the mean wind;
     /// shelters, sources and movers are added point by point (sources, then movers, in one sum).
+    #[inline(always)]
     fn read_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>, movers: &[MoverFlow]) -> V3<L> {
         let global = self.global_lanes::<L>(moment, points);
         if self.shelters.is_empty() && self.sources.is_empty() && movers.is_empty() {
@@ -199,7 +202,8 @@ impl WindField {
             let total = g + local;
             if total.is_finite() { total } else { g }
         };
-        let v: [Vec3; 4] = std::array::from_fn(|k| if k < L::WIDTH { each(k) } else { Vec3::ZERO });
+        let v: [Vec3; MAX_WIDTH] =
+            std::array::from_fn(|k| if k < L::WIDTH { each(k) } else { Vec3::ZERO });
         V3::new(
             L::from_fn(|k| v[k].x),
             L::from_fn(|k| v[k].y),
@@ -214,6 +218,7 @@ impl WindField {
     }
 
     /// The log-law mean wind plus turbulence (no shelters or sources) at `L::WIDTH` points.
+    #[inline(always)]
     fn global_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>) -> V3<L> {
         let c = &self.config;
         let time = moment.time;
@@ -266,6 +271,7 @@ impl WindField {
     /// lane's point: Taylor's travel ∫ U dt reduced to the grid's period in f64 once, then the
     /// node coordinates, branch-free floors and periodic wraps and the bilinear (trilinear in
     /// time) weights in f32 lanes; only the node loads go lane by lane.
+    #[inline(always)]
     fn plane_lanes<L: Lane>(&self, moment: &Moment, points: V3<L>) -> V3<L> {
         let dims = self.shape.dims();
         let (nx, nz) = match *dims {
@@ -275,34 +281,25 @@ impl WindField {
         let per_cell = L::splat(self.per_cell as f32);
         let x = (points.x - L::splat(moment.shift.0)) * per_cell;
         let z = (points.z - L::splat(moment.shift.1)) * per_cell;
-        let (i0, i1, fx) = wrap_lanes(x, nx);
-        let (j0, j1, fz) = wrap_lanes(z, nz);
-        let slice = |t: usize| {
-            let node = |i: &[usize; 4], j: &[usize; 4]| {
-                let [a, b, c, _] = L::columns(|k| {
-                    let v = self.nodes[(t * nx + i[k]) * nz + j[k]];
-                    [v.x, v.y, v.z, 0.0]
-                });
-                V3::new(a, b, c)
-            };
-            let (gx, gz) = (L::splat(1.0) - fx, L::splat(1.0) - fz);
-            let low = node(&i0, &j0).scale(gz).add(node(&i0, &j1).scale(fz));
-            let high = node(&i1, &j0).scale(gz).add(node(&i1, &j1).scale(fz));
-            low.scale(gx).add(high.scale(fx))
-        };
+        let x = wrap_lanes(x, nx);
+        let z = wrap_lanes(z, nz);
         let (t0, t1, ft) = moment.slice;
+        let slice = |t: usize| &self.nodes[t * nx * nz..(t + 1) * nx * nz];
         if t0 == t1 {
-            return slice(t0);
+            return bilinear(slice(t0), nz, &x, &z);
         }
         let ft = L::splat(ft);
-        slice(t0).scale(L::splat(1.0) - ft).add(slice(t1).scale(ft))
+        bilinear(slice(t0), nz, &x, &z)
+            .scale(L::splat(1.0) - ft)
+            .add(bilinear(slice(t1), nz, &x, &z).scale(ft))
     }
 
     /// The turbulence of a volume at each lane's point (the pattern's travel scaled by each
     /// height's log-law ratio `travel`, advected at its mean speed `mean`): point by point, in
     /// f64 coordinates.
+    #[inline(always)]
     fn volume_lanes<L: Lane>(&self, points: V3<L>, time: f64, mean: L, travel: L) -> V3<L> {
-        let noise: [Vec3; 4] = std::array::from_fn(|k| {
+        let noise: [Vec3; MAX_WIDTH] = std::array::from_fn(|k| {
             if k >= L::WIDTH {
                 return Vec3::ZERO;
             }
@@ -341,10 +338,34 @@ impl WindField {
     }
 }
 
+/// The bilinear read of a plane of `nodes` (rows of `nz`) at each lane's wrapped coordinates
+/// `x` and `z` (from [`wrap_lanes`]).
+#[inline(always)]
+fn bilinear<L: Lane>(nodes: &[Vec3], nz: usize, x: &Wrapped<L>, z: &Wrapped<L>) -> V3<L> {
+    let node = |i: &[usize; MAX_WIDTH], j: &[usize; MAX_WIDTH]| {
+        let [a, b, c, _] = L::columns(|k| {
+            let v = nodes[i[k] * nz + j[k]];
+            [v.x, v.y, v.z, 0.0]
+        });
+        V3::new(a, b, c)
+    };
+    let (i0, i1, fx) = x;
+    let (j0, j1, fz) = z;
+    let (gx, gz) = (L::splat(1.0) - *fx, L::splat(1.0) - *fz);
+    let low = node(i0, j0).scale(gz).add(node(i0, j1).scale(*fz));
+    let high = node(i1, j0).scale(gz).add(node(i1, j1).scale(*fz));
+    low.scale(gx).add(high.scale(*fx))
+}
+
+/// A coordinate wrapped onto a periodic axis, lane by lane: the node below, the next, and the
+/// weight of the next.
+type Wrapped<L> = ([usize; MAX_WIDTH], [usize; MAX_WIDTH], L);
+
 /// A grid coordinate `c` in lanes wrapped onto an axis of `n` nodes: the node below and the
 /// next (periodic), and the weight of the next. Branch-free: c − n ⌊c / n⌋ with the portable
 /// floor, held to [0, n) against rounding; a non-finite coordinate reads node 0.
-fn wrap_lanes<L: Lane>(c: L, n: usize) -> ([usize; 4], [usize; 4], L) {
+#[inline(always)]
+fn wrap_lanes<L: Lane>(c: L, n: usize) -> Wrapped<L> {
     let len = L::splat(n as f32);
     let w = c - len * floor(c * L::splat(1.0 / n as f32));
     let w = L::select(w.lt(L::splat(0.0)), w + len, w);

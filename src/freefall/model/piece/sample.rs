@@ -9,7 +9,7 @@ use bevy::math::{Quat, Vec3};
 use super::Piece;
 use crate::freefall::model::database::{SEGMENT_SAMPLES, TrajectoryDatabase};
 use crate::portable::geometry::{Q, V3};
-use crate::portable::lane::Lane;
+use crate::portable::lane::{Lane, MAX_WIDTH};
 use crate::portable::transcendental::{atan2, clamp, sin_cos_bounded};
 
 /// How many numbers a compiled piece holds (see [`PieceWords`]).
@@ -128,7 +128,7 @@ impl PieceWords {
         let (offset, tilt) = sample::<f32>(
             &self.words,
             self.inv_duration,
-            [self.row; 4],
+            [self.row; MAX_WIDTH],
             self.tumble,
             self.curve,
             db,
@@ -139,6 +139,7 @@ impl PieceWords {
 }
 
 /// The rotation about z by θ₀ + φ from (cos θ₀/2, sin θ₀/2) and φ (|φ| bounded: a turn).
+#[inline(always)]
 pub(crate) fn rotation_z<L: Lane>(start_half: (L, L), phi: L) -> Q<L> {
     let (s, c) = sin_cos_bounded(L::splat(0.5) * phi);
     let (c0, s0) = start_half;
@@ -149,10 +150,11 @@ pub(crate) fn rotation_z<L: Lane>(start_half: (L, L), phi: L) -> Q<L> {
 /// Pieces of either kind at piece time `t`, lane by lane (`curve` says which): the swing's
 /// sample where a lane is a swing, the curve's where it is a curve; each kind is computed only
 /// when a lane has it.
+#[inline(always)]
 pub(crate) fn sample<L: Lane>(
     words: &[L; WORDS],
     inv_duration: L,
-    rows: [u32; 4],
+    rows: [u32; MAX_WIDTH],
     tumble: L::Mask,
     curve: L::Mask,
     db: &TrajectoryDatabase,
@@ -174,10 +176,11 @@ pub(crate) fn sample<L: Lane>(
 /// A swing at piece time `t`: its displacement and the plate's tilt. The segment's samples are
 /// interpolated linearly; beyond its end a swing goes on at its last velocity (the last pair of
 /// samples extrapolated) and keeps its final angle.
+#[inline(always)]
 pub(crate) fn swing_sample<L: Lane>(
     words: &[L; WORDS],
     inv_duration: L,
-    rows: [u32; 4],
+    rows: [u32; MAX_WIDTH],
     tumble: L::Mask,
     db: &TrajectoryDatabase,
     t: L,
@@ -207,6 +210,7 @@ pub(crate) fn swing_sample<L: Lane>(
 }
 
 /// Eq. 6 at curve time `time` and its time derivative.
+#[inline(always)]
 pub(crate) fn curve_motion<L: Lane>(words: &[L; WORDS], time: L) -> (V3<L>, V3<L>) {
     use curve_word::*;
     let (rate, lobes) = (words[RATE], words[LOBES]);
@@ -228,6 +232,7 @@ pub(crate) fn curve_motion<L: Lane>(words: &[L; WORDS], time: L) -> (V3<L>, V3<L
 
 /// A curve at piece time `t`: its displacement since its start and the plate leaning into its
 /// horizontal velocity by half its glide angle.
+#[inline(always)]
 pub(crate) fn curve_sample<L: Lane>(words: &[L; WORDS], t: L) -> (V3<L>, Q<L>) {
     use curve_word::*;
     let (position, velocity) = curve_motion(words, words[START] + t);
