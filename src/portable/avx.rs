@@ -227,7 +227,7 @@ impl Lane for F8 {
     #[inline(always)]
     fn mask_from_fn(mut f: impl FnMut(usize) -> bool) -> F8 {
         let bits = F8::build(0u32, |k| if f(k) { u32::MAX } else { 0 });
-        F8::of_array(bits.map(f32::from_bits))
+        F8::of_array(F8::build(0.0, |k| f32::from_bits(bits[k])))
     }
     #[inline(always)]
     fn to_i32s(self) -> [i32; MAX_WIDTH] {
@@ -245,6 +245,7 @@ impl Lane for F8 {
     #[inline(always)]
     fn columns(mut row: impl FnMut(usize) -> [f32; 4]) -> [Self; 4] {
         let rows = F8::build([0.0; 4], &mut row);
-        [0, 1, 2, 3].map(|c| F8::of_array(F8::build(0.0, |k| rows[k][c])))
+        let column = |c: usize| F8::of_array(F8::build(0.0, |k| rows[k][c]));
+        [column(0), column(1), column(2), column(3)]
     }
 }

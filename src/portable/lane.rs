@@ -12,6 +12,32 @@ use wide::{f32x4, i32x4, u32x4};
 /// The most lanes any [`Lane`] has: the size of arrays that hold one thing a lane.
 pub(crate) const MAX_WIDTH: usize = 8;
 
+/// `f` of each of a lane array's entries, in a plain loop: inlined with the caller in any build
+/// (an array's `map` can stay a call where the crate is split into codegen units, and the
+/// eight lanes' pass must inline whole into its AVX2 function).
+#[inline(always)]
+pub(crate) fn each<T: Copy, U: Copy + Default>(
+    a: [T; MAX_WIDTH],
+    mut f: impl FnMut(T) -> U,
+) -> [U; MAX_WIDTH] {
+    let mut out = [U::default(); MAX_WIDTH];
+    for (o, &v) in out.iter_mut().zip(&a) {
+        *o = f(v);
+    }
+    out
+}
+
+/// One entry a lane from `f(k)`, in a plain loop (as [`each`]: `std::array::from_fn` can stay a
+/// call in a build split into codegen units).
+#[inline(always)]
+pub(crate) fn per_lane<T: Copy + Default>(mut f: impl FnMut(usize) -> T) -> [T; MAX_WIDTH] {
+    let mut out = [T::default(); MAX_WIDTH];
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = f(k);
+    }
+    out
+}
+
 /// A number or a few in lanes, with the operations the step needs.
 pub(crate) trait Lane:
     Copy

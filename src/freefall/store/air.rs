@@ -6,7 +6,7 @@ use bevy::math::Vec3;
 use super::block::{Block, ConstantStorage, W};
 use crate::freefall::model::release::FallRelease;
 use crate::portable::geometry::V3;
-use crate::portable::lane::{Lane, MAX_WIDTH};
+use crate::portable::lane::{Lane, MAX_WIDTH, per_lane};
 use crate::wind::{Moment, MoverFlow, WindField};
 
 /// The air the falls move in.
@@ -119,8 +119,7 @@ fn clamp_speed<L: Lane>(v: V3<L>, max: f32) -> V3<L> {
             crate::guard::clamp_length(Vec3::new(v.x.get(j), v.y.get(j), v.z.get(j)), max)
         }
     };
-    let lanes: [Vec3; MAX_WIDTH] =
-        std::array::from_fn(|j| if j < L::WIDTH { each(j) } else { Vec3::ZERO });
+    let lanes: [Vec3; MAX_WIDTH] = per_lane(|j| if j < L::WIDTH { each(j) } else { Vec3::ZERO });
     V3::new(
         L::from_fn(|j| lanes[j].x),
         L::from_fn(|j| lanes[j].y),

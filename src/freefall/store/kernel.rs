@@ -12,7 +12,7 @@ use crate::freefall::model::database::TrajectoryDatabase;
 use crate::freefall::model::piece::sample::{WORDS, sample};
 use crate::freefall::model::tilt::wind_tilt;
 use crate::portable::geometry::{Q, V3};
-use crate::portable::lane::Lane;
+use crate::portable::lane::{Lane, per_lane};
 
 /// Drift speeds below this, m/s, are still air (flushed to zero: never subnormal).
 pub(crate) const MIN_DRIFT: f32 = 1e-6;
@@ -161,7 +161,7 @@ pub(crate) fn sample_piece<L: Lane, K: ConstantStorage>(
 ) -> (V3<L>, Q<L>) {
     let h = &block.hot;
     let half = L::splat(0.5);
-    let rows = std::array::from_fn(|j| block.row[(k + j).min(block.row.len() - 1)]);
+    let rows = per_lane(|j| block.row[(k + j).min(block.row.len() - 1)]);
     sample(
         &words(h, k),
         L::load(&h.inv_duration, k),

@@ -7,7 +7,7 @@ use wide::f32x4;
 use super::WindField;
 use super::profile;
 use crate::portable::geometry::V3;
-use crate::portable::lane::{Lane, MAX_WIDTH};
+use crate::portable::lane::{Lane, MAX_WIDTH, each, per_lane};
 use crate::portable::transcendental::{clamp, floor};
 use crate::spectrum::periodic_lerp;
 use crate::wind::config::{SpatialMode, TemporalMode};
@@ -202,8 +202,7 @@ impl WindField {
             let total = g + local;
             if total.is_finite() { total } else { g }
         };
-        let v: [Vec3; MAX_WIDTH] =
-            std::array::from_fn(|k| if k < L::WIDTH { each(k) } else { Vec3::ZERO });
+        let v: [Vec3; MAX_WIDTH] = per_lane(|k| if k < L::WIDTH { each(k) } else { Vec3::ZERO });
         V3::new(
             L::from_fn(|k| v[k].x),
             L::from_fn(|k| v[k].y),
@@ -299,7 +298,7 @@ impl WindField {
     /// f64 coordinates.
     #[inline(always)]
     fn volume_lanes<L: Lane>(&self, points: V3<L>, time: f64, mean: L, travel: L) -> V3<L> {
-        let noise: [Vec3; MAX_WIDTH] = std::array::from_fn(|k| {
+        let noise: [Vec3; MAX_WIDTH] = per_lane(|k| {
             if k >= L::WIDTH {
                 return Vec3::ZERO;
             }
@@ -374,8 +373,8 @@ fn wrap_lanes<L: Lane>(c: L, n: usize) -> Wrapped<L> {
     let w = L::select(finite, w, L::splat(0.0));
     let i = floor(w);
     let f = clamp(w - i, L::splat(0.0), L::splat(1.0));
-    let below = L::to_i32s(i).map(|i| (i.max(0) as usize).min(n - 1));
-    let above = below.map(|i| if i + 1 == n { 0 } else { i + 1 });
+    let below = each(L::to_i32s(i), |i| (i.max(0) as usize).min(n - 1));
+    let above = each(below, |i| if i + 1 == n { 0 } else { i + 1 });
     (below, above, f)
 }
 

@@ -9,7 +9,7 @@ use bevy::math::{Quat, Vec3};
 use super::Piece;
 use crate::freefall::model::database::{SEGMENT_SAMPLES, TrajectoryDatabase};
 use crate::portable::geometry::{Q, V3};
-use crate::portable::lane::{Lane, MAX_WIDTH};
+use crate::portable::lane::{Lane, MAX_WIDTH, each};
 use crate::portable::transcendental::{atan2, clamp, sin_cos_bounded};
 
 /// How many numbers a compiled piece holds (see [`PieceWords`]).
@@ -191,7 +191,7 @@ pub(crate) fn swing_sample<L: Lane>(
     let u = clamp(s, L::splat(0.0), L::splat(1.0));
     let x = u * L::splat(last);
     // The sample below x (NaN: the first), and the rows of it and the next, one load a lane.
-    let index = L::to_i32s(x).map(|i| i.clamp(0, last as i32 - 1) as usize);
+    let index = each(L::to_i32s(x), |i| i.clamp(0, last as i32 - 1) as usize);
     let i = L::from_fn(|k| index[k] as f32);
     let base = |k: usize| rows[k] as usize + index[k];
     let [x0, y0, a0, b0] = L::columns(|k| db.row(base(k)));
