@@ -175,52 +175,33 @@ fn cloud(c: &mut Criterion) {
         )
     });
     // One thread (no pool): a leaf-step's cost in ns is the time / 100 000; in still air (no
-    // wind read), the synthesis alone.
-    group.bench_function("leaf_cloud_with_wind_one_thread", |b| {
-        b.iter_batched_ref(
-            || full.clone(),
-            |leaves| leaves.step(&step(&model, &wind, None), None),
-            BatchSize::LargeInput,
-        )
-    });
-    group.bench_function("leaf_cloud_still_air_one_thread", |b| {
-        b.iter_batched_ref(
-            || full.clone(),
-            |leaves| {
-                let still = CloudStep {
-                    wind: None,
-                    ..step(&model, &wind, None)
-                };
-                leaves.step(&still, None)
-            },
-            BatchSize::LargeInput,
-        )
-    });
-    // The same in four lanes where the default is eight (AVX2): what the wider lanes bring.
-    if bevy_windfall::widest_lanes() == 8 {
-        bevy_windfall::set_lane_width(4);
-        group.bench_function("leaf_cloud_with_wind_one_thread_4_lanes", |b| {
-            b.iter_batched_ref(
-                || full.clone(),
-                |leaves| leaves.step(&step(&model, &wind, None), None),
-                BatchSize::LargeInput,
-            )
-        });
-        group.bench_function("leaf_cloud_still_air_one_thread_4_lanes", |b| {
-            b.iter_batched_ref(
-                || full.clone(),
-                |leaves| {
-                    let still = CloudStep {
-                        wind: None,
-                        ..step(&model, &wind, None)
-                    };
-                    leaves.step(&still, None)
-                },
-                BatchSize::LargeInput,
-            )
-        });
-        bevy_windfall::set_lanes(true);
+    // wind read), the synthesis alone. Then the same in four lanes where the default is eight
+    // (AVX2): what the wider lanes bring.
+    let widths: &[(usize, &str)] = if bevy_windfall::widest_lanes() == 8 {
+        &[(8, ""), (4, "_4_lanes")]
+    } else {
+        &[(4, "")]
+    };
+    for &(width, suffix) in widths {
+        bevy_windfall::set_lane_width(width);
+        for (air, field) in [("with_wind", Some(&wind)), ("still_air", None)] {
+            let name = format!("leaf_cloud_{air}_one_thread{suffix}");
+            group.bench_function(name, |b| {
+                b.iter_batched_ref(
+                    || full.clone(),
+                    |leaves| {
+                        let step = CloudStep {
+                            wind: field,
+                            ..step(&model, &wind, None)
+                        };
+                        leaves.step(&step, None)
+                    },
+                    BatchSize::LargeInput,
+                )
+            });
+        }
     }
+    bevy_windfall::set_lanes(true);
     group.bench_function("baseline_drag_particles_with_wind_one_thread", |b| {
         b.iter_batched_ref(
             || particles.clone(),
