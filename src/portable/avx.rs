@@ -6,13 +6,21 @@
 //! and `fearless_simd`'s vectors carry a capability token that [`Lane::splat`] and the other
 //! token-free constructors the step is written against cannot supply. Each operation here is
 //! the one `wide::f32x4` uses on SSE, twice as wide (IEEE add, subtract, multiply, divide and
-//! square root; ordered comparisons; bitwise selects; the same truncation rule), so eight
-//! lanes give each fall the bits four lanes and one give it.
+//! square root; comparisons false on NaN; the same truncation rule), so eight lanes give each
+//! fall the bits four lanes and one give it. One difference in kind: a select here blends by
+//! each mask lane's sign bit (`vblendvps`) where `wide` on SSE2 blends bit by bit; the two agree
+//! because every mask the step makes (comparisons, `and`, `or`, `not`, `mask_from_fn`) is all
+//! ones or all zeros in each lane.
 //!
-//! **Where it may run.** Every method is `#[inline(always)]` over an AVX or AVX2 intrinsic: an
-//! [`F8`] may only be made inside code entered after [`has_avx2`] said yes (the store's driver
-//! does so in one `#[target_feature(enable = "avx2")]` function, into which the step's generic
-//! arithmetic inlines). That is the invariant each `unsafe` block below relies on.
+//! **Where it may run.** The methods are `#[inline(always)]`, most over an AVX or AVX2
+//! intrinsic (the array conversions are plain bit copies). An [`F8`] may only be made in code
+//! entered after [`has_avx2`] said yes: the store's driver does so in one
+//! `#[target_feature(enable = "avx2")]` function, the only place in the crate that names
+//! `F8` outside this file and its tests. That is a rule of this crate's code, not one the
+//! type enforces (`Lane::splat` and the other constructors are safe functions); the `unsafe`
+//! blocks that run an intrinsic rely on it. The step's lane kernels are `#[inline(always)]` so
+//! that they inline into that function and take its instructions; one left out of line would
+//! still be correct, only slower.
 
 #![allow(unsafe_code)]
 

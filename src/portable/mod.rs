@@ -26,8 +26,8 @@ pub fn set_lanes(on: bool) {
     set_lane_width(if on { 8 } else { 1 });
 }
 
-/// The most falls a step may put side by side: 1, 4 or 8 (others round down to one of those;
-/// 8 takes effect only where the CPU has AVX2, else 4). For tests and benchmarks that compare
+/// The most falls a step may put side by side: 1, 4 or 8 (0 counts as 1, 2–7 as 4, more as
+/// 8; 8 takes effect only where the CPU has AVX2, else 4). For tests and benchmarks that compare
 /// widths, which must give the same bits. Not part of the crate's interface.
 #[doc(hidden)]
 pub fn set_lane_width(width: usize) {

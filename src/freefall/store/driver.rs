@@ -304,8 +304,8 @@ impl<K: ConstantStorage> Lanes<'_, '_, K> {
     }
 
     /// The block in one pass of eight lanes, compiled for AVX2: the pass's generic arithmetic
-    /// is inlined into this function (each of its functions is `#[inline(always)]`) and takes
-    /// its instructions.
+    /// (its lane kernels are `#[inline(always)]`) is inlined into this function and takes its
+    /// instructions.
     #[cfg(target_arch = "x86_64")]
     #[inline(never)]
     #[target_feature(enable = "avx2")]

@@ -66,7 +66,7 @@ pub(crate) fn ln(x: f32) -> f32 {
 }
 
 /// [`ln`] for one number or for lanes.
-#[inline]
+#[inline(always)]
 pub(crate) fn ln_lanes<L: crate::portable::lane::Lane>(x: L) -> L {
     crate::portable::transcendental::ln(x)
 }
