@@ -574,3 +574,74 @@ fn coefficients_can_be_tuned_live_and_bad_ones_are_refused_by_name() {
     let ratio = terminal(&plate) / slow;
     assert!((ratio - 0.5).abs() < 0.02, "ratio {ratio}");
 }
+
+/// The opt-in reactive air (Lighthill's force along the yarns) only takes energy out in still
+/// air: released from rest, a flag and a curtain (under gravity tilted out of its plane, so that
+/// it swings) never have more energy than they started with (beyond f32 rounding), and lose
+/// some as they swing.
+#[test]
+fn reactive_air_never_exceeds_the_starting_energy_in_still_air() {
+    const G: Vec3 = Vec3::new(0.0, -9.81, 3.0);
+    for pinning in [Pinning::PoleColumn, Pinning::TopRow] {
+        let grid = bevy_windfall::cloth::ClothGrid {
+            rows: 12,
+            columns: 18,
+            width: 1.5,
+            height: 1.0,
+        };
+        let mut cloth = ParticleCloth::new(grid, 0.2, AeroCoefficients::default(), pinning)
+            .unwrap()
+            .with_reactive_air();
+        let start = cloth.energy(G);
+        let mut energy = start;
+        for _ in 0..300 {
+            cloth.step(1.0 / 60.0, G, &still);
+            energy = cloth.energy(G);
+            assert!(
+                energy <= start + 1e-6 * start.abs(),
+                "{pinning:?}: {start} → {energy}"
+            );
+        }
+        assert!(
+            energy < start - 0.01 * start.abs(),
+            "{pinning:?}: {start} → {energy}"
+        );
+        assert_eq!(cloth.reactive_guarded_pivots(), 0);
+    }
+}
+
+/// Under the reactive air a flag stays finite and its yarns bounded from a gale to winds far
+/// beyond weather, flipping sign from node to node and frame to frame or not finite at all.
+#[test]
+fn reactive_air_survives_gales_and_wild_winds() {
+    type Wind = fn(Vec3) -> Vec3;
+    let winds: [(&str, Wind); 4] = [
+        ("gale", |p| {
+            Vec3::new(70.0, 5.0 * (p.y * 9.0).sin(), 3.0 * (p.x * 7.0).cos())
+        }),
+        ("1e30 m/s", |_| Vec3::new(1e30, 0.0, 0.0)),
+        ("±1e6 node to node", |p| {
+            Vec3::new(1e6 * (p.x * 1e3).sin().signum(), 0.0, 1e6)
+        }),
+        ("NaN", |_| Vec3::NAN),
+    ];
+    for (label, wind) in winds {
+        for dt in [1.0 / 60.0, 0.25] {
+            let mut cloth = flag(0.05).with_reactive_air();
+            for step in 0..40 {
+                let flip = if step % 2 == 0 { 1.0 } else { -1.0 };
+                cloth.step(dt, G, &|p| wind(p) * flip);
+                assert!(
+                    cloth.positions().iter().all(|p| p.is_finite()),
+                    "{label}, dt {dt}"
+                );
+                assert!(cloth.energy(G).is_finite(), "{label}, dt {dt}");
+            }
+            assert!(
+                cloth.max_strain() <= 0.5,
+                "{label}, dt {dt}: strain {}",
+                cloth.max_strain()
+            );
+        }
+    }
+}

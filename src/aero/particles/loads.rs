@@ -57,5 +57,8 @@ impl ParticleCloth {
             let f = c.density * SKIN_FRICTION * area * (rel - n * along).length();
             self.friction[i] = if f.is_finite() { f.min(MOST_RATE) } else { 0.0 };
         }
+        if let Some(air) = &mut self.reactive {
+            air.measure(&self.positions, &self.velocities, &self.wind);
+        }
     }
 }

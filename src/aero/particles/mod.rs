@@ -7,6 +7,7 @@ use crate::portable::transcendental::sin_cos;
 mod constraints;
 mod loads;
 mod pressure;
+mod reactive;
 mod screen;
 mod substep;
 mod yarns;
@@ -162,6 +163,9 @@ pub struct ParticleCloth {
     /// Substeps the next tick is cut into.
     parts: u32,
     previous: Vec<Vec3>,
+    /// The air as Lighthill's reactive force along the chordwise yarns instead of the pressure
+    /// (opt-in, [`ParticleCloth::with_reactive_air`]).
+    reactive: Option<reactive::ReactiveAir>,
 }
 
 impl ParticleCloth {
@@ -328,11 +332,42 @@ impl ParticleCloth {
             tick_start: TickStart::default(),
             undone: 0,
             parts: 1,
+            reactive: None,
         };
         let mut normals = std::mem::take(&mut cloth.normals);
         cloth.normals_into(&mut normals);
         cloth.normals = normals;
         Ok(cloth)
+    }
+
+    /// The same cloth with the air as Lighthill's reactive force along its chordwise yarns
+    /// (the yarns from the pins to the free edge) and the resistive drag, instead of the
+    /// smoothed pressure: each node carries its strip's share of a flat plate's added mass,
+    /// elliptic over the span. Experimental and not yet the default: it gives a held sheet
+    /// Jones' slender-wing lift slope on any grid, but a flag under it does not yet flap as
+    /// flags do (the module `reactive` and docs/aero.md say what is measured and what is
+    /// missing). Hidden from the docs until it does.
+    #[doc(hidden)]
+    pub fn with_reactive_air(mut self) -> Self {
+        let (air, added_mass) = reactive::ReactiveAir::new(&self);
+        self.beta = added_mass
+            .iter()
+            .map(|m_a| m_a / (self.node_mass + m_a))
+            .collect();
+        self.added_mass = added_mass;
+        self.reactive = Some(air);
+        let mut normals = std::mem::take(&mut self.normals);
+        self.normals_into(&mut normals);
+        self.normals = normals;
+        self
+    }
+
+    /// Pivots of the reactive air's solves that were not positive and finite (0 without it).
+    #[doc(hidden)]
+    pub fn reactive_guarded_pivots(&self) -> u64 {
+        self.reactive
+            .as_ref()
+            .map_or(0, reactive::ReactiveAir::guarded_pivots)
     }
 
     /// Node positions, row-major (local frame).

@@ -42,24 +42,31 @@ impl ParticleCloth {
             self.relative[i] = normal - u_n;
             self.reach[i] = h / (m + m_a);
         }
-        let loads = Loads {
-            lift: &self.lift_rate,
-            drag: &self.drag_rate,
-            relative: &self.relative,
-            reach: &self.reach,
-        };
-        let screen = self.screen();
-        smoothed_pressure(
-            loads,
-            &screen,
-            &mut self.pressure_scratch,
-            &mut self.pressure,
-        );
+        if let Some(air) = &mut self.reactive {
+            air.solve(h, &self.drag_rate, &self.relative, &mut self.pressure);
+        } else {
+            let loads = Loads {
+                lift: &self.lift_rate,
+                drag: &self.drag_rate,
+                relative: &self.relative,
+                reach: &self.reach,
+            };
+            let screen = self.screen();
+            smoothed_pressure(
+                loads,
+                &screen,
+                &mut self.pressure_scratch,
+                &mut self.pressure,
+            );
+        }
         for i in 0..self.positions.len() {
             let (n, u, p) = (self.normals[i], self.wind[i], self.pressure[i]);
             let c = self.friction[i];
             let u_t = u - n * u.dot(n);
-            let v = self.velocities[i] - n * (self.reach[i] * p);
+            let v = match &self.reactive {
+                Some(air) => self.velocities[i] + n * (air.after()[i] - self.relative[i]),
+                None => self.velocities[i] - n * (self.reach[i] * p),
+            };
             let pinned = self.inverse_mass[i] == 0.0;
             // A held node's push goes into the pin (and into the force).
             let v_t = if pinned { Vec3::ZERO } else { v - n * v.dot(n) };
@@ -134,14 +141,20 @@ impl ParticleCloth {
     }
 
     /// Each node's normal from the moved positions, its velocity along the new normal set so
-    /// that ½ m |v|² + ½ m_a (v · n)² is what it was with the normal its substep used.
+    /// that ½ m |v|² + ½ m_a (v · n)² is what it was with the normal its substep used. With the
+    /// reactive air, the carried air's momentum relative to the wind, m_a (v − u) · n, also
+    /// answers the normal's turn in the wind: Δ(v · n) (m + m_a) gains m_a u · Δn, the share of
+    /// Lighthill's −∂ₜ(m_a w) that the nodes' inertia along n does not hold (the air's
+    /// Coriolis-like force −2 m_a U ∂ₓ∂ₜy on a wave, in linear theory, with the flux's other half).
     fn turn_normals(&mut self) {
         let mut fresh = std::mem::take(&mut self.fresh_normals);
         self.normals_into(&mut fresh);
         let m = self.node_mass;
-        for ((v, (old, new)), (w, m_a)) in self
+        let coriolis = self.reactive.is_some();
+        for (((v, u), (old, new)), (w, m_a)) in self
             .velocities
             .iter_mut()
+            .zip(&self.wind)
             .zip(self.normals.iter().zip(&fresh))
             .zip(self.inverse_mass.iter().zip(&self.added_mass))
         {
@@ -151,7 +164,12 @@ impl ParticleCloth {
             let (was, is) = (v.dot(*old), v.dot(*new));
             let size = ((m * is * is + m_a * was * was) / (m + m_a)).sqrt();
             let sign = if is != 0.0 { is.signum() } else { was.signum() };
-            let turned = *v + *new * (sign * size - is);
+            let turned = if coriolis {
+                let carried = m_a * u.dot(*new - *old) / (m + m_a);
+                *v + *new * (sign * size - is + carried)
+            } else {
+                *v + *new * (sign * size - is)
+            };
             if turned.is_finite() {
                 *v = turned;
             }
