@@ -612,39 +612,63 @@ fn a_storm_leaves_no_frame_overstretched() {
     });
 }
 
-/// The flag under the opt-in reactive air: at 8 m/s it flies and flaps, swinging
-/// 0.15–0.5 L with waves at 0.75–0.95 U; at 1.5 m/s it hangs at least 60° below the horizontal,
-/// swinging at most 0.15 L. Measured (24 rows, 60 s after 2 s, ticks of 2 ms): at 8 m/s it
-/// streams without flapping (swing 0.047 L, 0.43 Hz, drag 0.94 N, a sixth of the wind code's);
-/// at 1.5 m/s it flies 37° below the horizontal and swings 0.79 L side to side. The force
-/// along the chordwise yarns holds a flag pointing downwind, but a flag that droops has the
-/// air flowing across its yarns, along which the model carries no momentum (docs/aero.md).
-#[test]
-#[ignore = "not met under the reactive air: 8 m/s swing 0.047 L (0.15–0.5 L); 1.5 m/s at 36.8° (≥ 60°), swing 0.79 L (≤ 0.15 L)"]
-fn under_the_reactive_air_the_flag_flies_and_hangs_as_flags_do() {
-    let runs: Vec<(f32, Run)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = [1.5f32, 8.0]
-            .into_iter()
-            .map(|speed| {
+/// `rows` × 1.5 `rows` flags under the opt-in reactive air in each `speed`, run in parallel
+/// over [`WINDOW`] after [`SETTLE`], 50 steps a second.
+fn reactive_runs(cases: &[(usize, f32)]) -> Vec<Run> {
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = cases
+            .iter()
+            .map(|&(rows, speed)| {
                 scope.spawn(move || {
-                    let mut cloth = flag(24).with_reactive_air();
-                    let run = record(&mut cloth, speed, 1.0 / 50.0, GRAVITY, (SETTLE, WINDOW));
-                    (speed, run)
+                    let mut cloth = flag(rows).with_reactive_air();
+                    record(&mut cloth, speed, 1.0 / 50.0, GRAVITY, (SETTLE, WINDOW))
                 })
             })
             .collect();
         handles.into_iter().map(|h| h.join().unwrap()).collect()
-    });
-    for (_, r) in &runs {
+    })
+}
+
+/// Under the opt-in reactive air the flag's waves run at the speed Lighthill's force gives,
+/// c = U m_a / (μ + m_a) ≈ 0.86 U, with nothing fitted, and are about twice its length
+/// (Raynaud & Mulleners: 1.87 L), at the Strouhal number of flags, on 24 and 32 rows at 8 m/s.
+/// Measured (60 s): 0.83 U and 1.98 L on 24 rows, 0.88 U and 1.99 L on 32 (f A / U 0.29 and
+/// 0.31); 48 rows (not run here, four times 24's time): 0.86 U, 1.83 L over 20 s.
+#[test]
+fn under_the_reactive_air_waves_run_at_the_speed_lighthills_force_gives() {
+    for r in reactive_runs(&[(24, 8.0), (32, 8.0)]) {
+        println!("{}", describe(&r));
+        let c = r.stats.wave_speed / r.speed;
+        let wavelength = r.stats.wave_speed / r.stats.frequency / WIDTH;
+        assert!((0.75..=0.95).contains(&c), "{}", describe(&r));
+        assert!((1.5..=2.2).contains(&wavelength), "{}", describe(&r));
+        assert!(
+            (0.1..=0.4).contains(&r.stats.strouhal(WIDTH, r.speed)),
+            "{}",
+            describe(&r)
+        );
+    }
+}
+
+/// The other targets for the flag under the opt-in reactive air: at 8 m/s it swings
+/// 0.15–0.5 L; at 1.5 m/s it hangs at least 60° below the horizontal, swinging at most 0.15 L.
+/// Measured (24 rows, 60 s after 2 s, ticks of 2 ms): at 8 m/s it swings 0.74 L (and drags
+/// 18.4 N, three times the wind code's 6 N); at 1.5 m/s it hangs 56.7° below the horizontal and
+/// swings 0.49 L. Nothing in the model yet limits the flapping's amplitude but the resistive
+/// drag, and a drooping flag has the air flowing across its chordwise yarns, along which alone
+/// the model carries the air's momentum (docs/aero.md).
+#[test]
+#[ignore = "not met under the reactive air: 8 m/s swing 0.74 L (0.15–0.5 L); 1.5 m/s at 56.7° (≥ 60°), swing 0.49 L (≤ 0.15 L)"]
+fn under_the_reactive_air_the_flag_hangs_in_light_air_and_swings_moderately_in_a_breeze() {
+    let runs = reactive_runs(&[(24, 1.5), (24, 8.0)]);
+    for r in &runs {
         println!("{}", describe(r));
     }
-    for (speed, r) in &runs {
-        if *speed < 2.0 {
+    for r in &runs {
+        if r.speed < 2.0 {
             assert!(r.angle >= 60.0 && r.swing <= 0.15, "{}", describe(r));
         } else {
-            let c = r.stats.wave_speed / r.speed;
             assert!((0.15..=0.5).contains(&r.swing), "{}", describe(r));
-            assert!((0.75..=0.95).contains(&c), "{}", describe(r));
         }
     }
 }

@@ -344,9 +344,10 @@ impl ParticleCloth {
     /// (the yarns from the pins to the free edge) and the resistive drag, instead of the
     /// smoothed pressure: each node carries its strip's share of a flat plate's added mass,
     /// elliptic over the span. Experimental and not yet the default: it gives a held sheet
-    /// Jones' slender-wing lift slope on any grid, but a flag under it does not yet flap as
-    /// flags do (the module `reactive` and docs/aero.md say what is measured and what is
-    /// missing). Hidden from the docs until it does.
+    /// Jones' slender-wing lift slope on any grid and a flag in a breeze waves at Lighthill's
+    /// speed, but the flag swings too wide, drags too much and does not hang in light air (the
+    /// module `reactive` and docs/aero.md say what is measured and what is missing). Hidden
+    /// from the docs until it does.
     #[doc(hidden)]
     pub fn with_reactive_air(mut self) -> Self {
         let (air, added_mass) = reactive::ReactiveAir::new(&self);

@@ -11,8 +11,10 @@
 //! cross-section). The air that slides along the yarn at U = (u − v) · τ (τ the yarn's tangent
 //! away from its pin) carries that momentum m̃ w along, w = (v − u) · n the normal velocity
 //! relative to the air: the force on the sheet per length is −∂ₜ(m̃ w) − ∂ₛ(U m̃ w). The first
-//! part is the carried air's inertia, which the nodes' inertia m I + m_a n nᵀ already holds; this
-//! module adds the second, the momentum flux, with the local resistive drag K w (the face law's
+//! part is the carried air's inertia, which the nodes' inertia m I + m_a n nᵀ and the turn of
+//! their velocities with their normals hold, but for the wind's share −m̃ u · ∂ₜn, which
+//! [`ReactiveAir::turn`] supplies to the turn; this module adds the second, the momentum flux,
+//! with the local resistive drag K w (the face law's
 //! C_D sin²α share along the normal). Over a node's stretch of yarn (finite volumes, the flux at
 //! each face taken from the node upwind of it, the flux at the free edge shed into the wake):
 //!
@@ -39,8 +41,9 @@
 //! unscreened one with the screen's correction on the right side.
 //!
 //! Opt-in ([`ParticleCloth::with_reactive_air`](super::ParticleCloth::with_reactive_air)) while
-//! it is measured: it gives a held sheet Jones' lift slope on any grid, but a flag under it
-//! does not yet flap as flags do (docs/aero.md).
+//! it is measured: it gives a held sheet Jones' lift slope on any grid and a flag's waves
+//! Lighthill's speed, but the flag swings too wide and does not hang in light air
+//! (docs/aero.md).
 //!
 //! Hand-written: a tridiagonal solve per yarn (Thomas' algorithm), which no maintained crate
 //! offers for strided data.
@@ -56,8 +59,8 @@ use crate::cloth::ClothGrid;
 const MOST_RATE: f32 = 1e30;
 
 /// Solves of the screened system after the first, unscreened one: each takes the correction
-/// h D (S − I) w′ of the last to the right side (contracting by about h U m̃ / (Δs (m + m_a)),
-/// a third a solve for a flag in a breeze).
+/// h D (S − I) w′ of the last to the right side (contracting by about h U m̃ / (m + m_a), m̃ per
+/// length: a third a solve for a flag in 8 m/s).
 const SCREEN_SOLVES: usize = 3;
 
 /// The chordwise yarns of a `rows × columns` row-major grid: `count` of them, each of `length`
@@ -109,6 +112,7 @@ pub(super) struct ReactiveAir {
     inertia: Vec<f32>,
     along: Vec<f32>,
     after: Vec<f32>,
+    turned: Vec<f32>,
     /// Per yarn: the screen's (ℓ / Δs)².
     spread: Vec<f32>,
     /// One yarn's work space: the system's eliminated upper diagonal and inverse pivots, its
@@ -145,8 +149,10 @@ impl ReactiveAir {
             let per_length =
                 carried_air(density, span, middle - 0.5 * across, middle + 0.5 * across);
             // The strip's semi-span √(R² − y²), averaged over it: its carried air per area
-            // over 2 ρ.
-            let semi_span = per_length / (2.0 * density * across);
+            // over 2 ρ (the edge strips reach only half a spacing past their yarn).
+            let width =
+                (middle + 0.5 * across).min(0.5 * span) - (middle - 0.5 * across).max(-0.5 * span);
+            let semi_span = per_length / (2.0 * density * width);
             let a = (semi_span / chord).powi(2);
             spread.push(if a.is_finite() { a.min(1e12) } else { 0.0 });
             for s in 0..chords.length {
@@ -168,6 +174,7 @@ impl ReactiveAir {
             inertia: added_mass.iter().map(|m_a| cloth.node_mass + m_a).collect(),
             along: vec![0.0; n],
             after: vec![0.0; n],
+            turned: vec![0.0; n],
             spread,
             upper: vec![0.0; chords.length],
             inverse: vec![0.0; chords.length],
@@ -195,6 +202,49 @@ impl ReactiveAir {
                 self.along[i] = if speed.is_finite() { speed } else { 0.0 };
             }
         }
+    }
+
+    /// The screen along `yarn`: the air enters it by the end its speed along the yarn points
+    /// from, on the whole; past that end the screened velocity falls to zero, past the other
+    /// its flux does.
+    fn screen(&self, yarn: usize) -> Screen {
+        let chords = self.chords;
+        let entering_first = (0..chords.length)
+            .map(|s| self.along[chords.node(yarn, s)])
+            .sum::<f32>()
+            >= 0.0;
+        Screen {
+            rows: 1,
+            columns: chords.length,
+            along_rows: self.spread[yarn],
+            along_columns: 0.0,
+            free_rows: (entering_first, !entering_first),
+            free_columns: (false, false),
+        }
+    }
+
+    /// The wind's share of each node's turn, u · (n_new − n_old) (m/s), screened along the
+    /// yarns as the flux is (the Coriolis-like half of Lighthill's −2 m̃ U ∂ₓ∂ₜy, whose other
+    /// half the flux carries): into [`Self::turned`].
+    pub fn turn(&mut self, wind: &[Vec3], old: &[Vec3], new: &[Vec3]) {
+        let chords = self.chords;
+        for yarn in 0..chords.count {
+            for s in 0..chords.length {
+                let i = chords.node(yarn, s);
+                let value = wind[i].dot(new[i] - old[i]);
+                self.line[s] = if value.is_finite() { value } else { 0.0 };
+            }
+            let screen = self.screen(yarn);
+            screen.smooth(&mut self.line, &mut self.smoothing);
+            for s in 0..chords.length {
+                self.turned[chords.node(yarn, s)] = self.line[s];
+            }
+        }
+    }
+
+    /// What [`Self::turn`] left: each node's screened u · Δn.
+    pub fn turned(&self) -> &[f32] {
+        &self.turned
     }
 
     /// The normal velocities relative to the air after the air's force.
@@ -290,15 +340,7 @@ impl ReactiveAir {
             solve(&self.right, &mut self.w);
             // The air enters the yarn by the end its speed along the yarn points from, on the
             // whole: past that end the screened velocity falls to zero, past the other its flux.
-            let entering_first = (0..n).map(|s| along[node(s)]).sum::<f32>() >= 0.0;
-            let screen = Screen {
-                rows: 1,
-                columns: n,
-                along_rows: self.spread[yarn],
-                along_columns: 0.0,
-                free_rows: (entering_first, !entering_first),
-                free_columns: (false, false),
-            };
+            let screen = self.screen(yarn);
             for _ in 0..SCREEN_SOLVES {
                 self.line.copy_from_slice(&self.w);
                 screen.smooth(&mut self.line, &mut self.smoothing);

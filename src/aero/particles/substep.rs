@@ -8,7 +8,7 @@ use bevy::math::Vec3;
 use super::constraints::{Inertia, project_bending, project_distances, project_tethers};
 use super::pressure::{Loads, smoothed_pressure};
 use super::screen::Screen;
-use super::{ParticleCloth, Pinning, STRETCH_TOLERANCE};
+use super::{ParticleCloth, Pinning, STRETCH_TOLERANCE, reactive};
 
 /// The pressure is smoothed over this fraction of the cloth's smaller side (see [`Screen`]):
 /// fitted with the added mass to the flapping flag's drag and waves (docs/aero.md).
@@ -143,20 +143,24 @@ impl ParticleCloth {
     /// Each node's normal from the moved positions, its velocity along the new normal set so
     /// that ½ m |v|² + ½ m_a (v · n)² is what it was with the normal its substep used. With the
     /// reactive air, the carried air's momentum relative to the wind, m_a (v − u) · n, also
-    /// answers the normal's turn in the wind: Δ(v · n) (m + m_a) gains m_a u · Δn, the share of
-    /// Lighthill's −∂ₜ(m_a w) that the nodes' inertia along n does not hold (the air's
-    /// Coriolis-like force −2 m_a U ∂ₓ∂ₜy on a wave, in linear theory, with the flux's other half).
+    /// answers the normal's turn in the wind: Δ(v · n) (m + m_a) gains m_a S(u · Δn), the share
+    /// of Lighthill's −∂ₜ(m_a w) that the nodes' inertia along n does not hold, screened along
+    /// the yarns as the flux is (in linear theory the two make the air's Coriolis-like force
+    /// −2 m_a U ∂ₓ∂ₜy on a wave, each half kept by the same share 1 / (1 + k²ℓ²)).
     fn turn_normals(&mut self) {
         let mut fresh = std::mem::take(&mut self.fresh_normals);
         self.normals_into(&mut fresh);
         let m = self.node_mass;
-        let coriolis = self.reactive.is_some();
-        for (((v, u), (old, new)), (w, m_a)) in self
+        if let Some(air) = &mut self.reactive {
+            air.turn(&self.wind, &self.normals, &fresh);
+        }
+        let turned = self.reactive.as_ref().map(reactive::ReactiveAir::turned);
+        for (i, ((v, (old, new)), (w, m_a))) in self
             .velocities
             .iter_mut()
-            .zip(&self.wind)
             .zip(self.normals.iter().zip(&fresh))
             .zip(self.inverse_mass.iter().zip(&self.added_mass))
+            .enumerate()
         {
             if *w == 0.0 || *m_a == 0.0 {
                 continue;
@@ -164,14 +168,15 @@ impl ParticleCloth {
             let (was, is) = (v.dot(*old), v.dot(*new));
             let size = ((m * is * is + m_a * was * was) / (m + m_a)).sqrt();
             let sign = if is != 0.0 { is.signum() } else { was.signum() };
-            let turned = if coriolis {
-                let carried = m_a * u.dot(*new - *old) / (m + m_a);
-                *v + *new * (sign * size - is + carried)
-            } else {
-                *v + *new * (sign * size - is)
+            let moved = match turned {
+                Some(turned) => {
+                    let carried = m_a * turned[i] / (m + m_a);
+                    *v + *new * (sign * size - is + carried)
+                }
+                None => *v + *new * (sign * size - is),
             };
-            if turned.is_finite() {
-                *v = turned;
+            if moved.is_finite() {
+                *v = moved;
             }
         }
         self.fresh_normals = std::mem::replace(&mut self.normals, fresh);
