@@ -148,6 +148,23 @@ fn lane_inputs() -> Vec<f32> {
         .collect()
 }
 
+/// Lanes of `L` over `x` (`L::WIDTH` values) give each lane the bits one lane gives it, for
+/// the kernels every width shares: `sin_cos`, `ln`, `floor`.
+fn kernels_give_the_bits_of_one<L: super::lane::Lane>(x: &[f32]) {
+    let lanes = L::from_fn(|k| x[k]);
+    let bits = |v: L| {
+        (0..L::WIDTH)
+            .map(|k| v.get(k).to_bits())
+            .collect::<Vec<_>>()
+    };
+    let one = |f: &dyn Fn(f32) -> f32| x.iter().map(|&v| f(v).to_bits()).collect::<Vec<_>>();
+    let (s, c) = sin_cos(lanes);
+    assert_eq!(bits(s), one(&|v| sin_cos(v).0), "{x:?}");
+    assert_eq!(bits(c), one(&|v| sin_cos(v).1), "{x:?}");
+    assert_eq!(bits(ln(lanes)), one(&ln), "{x:?}");
+    assert_eq!(bits(floor(lanes)), one(&floor), "{x:?}");
+}
+
 /// Four lanes give each lane the bits one lane gives it, for every kernel.
 #[test]
 fn lanes_give_the_bits_of_one() {
@@ -156,13 +173,7 @@ fn lanes_give_the_bits_of_one() {
         let x: [f32; 4] = chunk.try_into().unwrap();
         let y = x.map(|v| 0.37 - v);
         let lanes = f32x4::from(x);
-        let bits = |v: f32x4| v.to_array().map(f32::to_bits);
-        let one = |f: &dyn Fn(f32) -> f32| x.map(|v| f(v).to_bits());
-        let (s, c) = sin_cos(lanes);
-        assert_eq!(bits(s), one(&|v| sin_cos(v).0), "{x:?}");
-        assert_eq!(bits(c), one(&|v| sin_cos(v).1), "{x:?}");
-        assert_eq!(bits(ln(lanes)), one(&ln), "{x:?}");
-        assert_eq!(bits(floor(lanes)), one(&floor), "{x:?}");
+        kernels_give_the_bits_of_one::<f32x4>(chunk);
         let a = atan2(f32x4::from(y), lanes).to_array().map(f32::to_bits);
         let b: Vec<u32> = y
             .iter()
@@ -194,11 +205,7 @@ fn eight_lanes_give_the_bits_of_one() {
         let lanes = F8::from_fn(|k| x[k]);
         let bits = |v: F8| std::array::from_fn::<u32, 8, _>(|k| v.get(k).to_bits());
         let one = |f: &dyn Fn(f32) -> f32| x.map(|v| f(v).to_bits());
-        let (s, c) = sin_cos(lanes);
-        assert_eq!(bits(s), one(&|v| sin_cos(v).0), "{x:?}");
-        assert_eq!(bits(c), one(&|v| sin_cos(v).1), "{x:?}");
-        assert_eq!(bits(ln(lanes)), one(&ln), "{x:?}");
-        assert_eq!(bits(floor(lanes)), one(&floor), "{x:?}");
+        kernels_give_the_bits_of_one::<F8>(chunk);
         assert_eq!(bits(round(lanes)), one(&round), "{x:?}");
         assert_eq!(bits(lanes.sqrt()), one(&f32::sqrt), "{x:?}");
         assert_eq!(bits(-lanes), one(&|v| -v), "{x:?}");

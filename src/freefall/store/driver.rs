@@ -5,7 +5,8 @@
 //! 2. one branch-free lane pass over the falls whose piece goes on ([`kernel::usual`]);
 //! 3. the others (a piece ends and the chain steps, a swing is searched, a blend, a release
 //!    fading, an easing, a landing, a fall at rest) one at a time, in lane order, through the
-//!    same kernels ([`Slot::advance`]);
+//!    same kernels ([`Slot::prepare`]); a fall whose step crosses one piece end leaves the
+//!    new piece's sample to the lanes, which take it with the falls whose piece goes on;
 //! 4. for each fall stepped, its tier measured again and the span its pose is shown over.
 //!
 //! Bands changed, landings and motion changes are reported, and applied after the parallel
@@ -315,7 +316,8 @@ impl<K: ConstantStorage> Lanes<'_, '_, K> {
 
     /// The falls in lanes `k..k + L::WIDTH`: the wind read for them at once; the falls whose
     /// piece goes on and those at rest in lanes; the others one at a time
-    /// ([`Slot::prepare`]), their move and orientation finished in lanes with the usual ones.
+    /// ([`Slot::prepare`]), their move and orientation finished in lanes with the usual ones
+    /// (and the new piece sampled in lanes where a step crossed one piece end).
     #[inline(always)]
     fn pass<L: Lane>(&mut self, k: usize) {
         let Lanes {
@@ -375,17 +377,9 @@ fn pass<L: Lane, K: ConstantStorage>(
     if L::any(resting) {
         kernel::settle(&mut block.hot, k, resting, dt);
     }
-    // The usual sample, for the lanes whose piece goes on.
-    let (end, tilt) = if L::any(go) {
-        kernel::sample_piece(block, k, db, t)
-    } else {
-        (V3::splat(Vec3::ZERO), Q::identity())
-    };
-    let h = &block.hot;
-    let offset = V3::new(L::load(&h.ox, k), L::load(&h.oy, k), L::load(&h.oz, k));
-    let delta = kernel::turned((L::load(&h.tc, k), L::load(&h.ts, k)), end.sub(offset));
     // The others, one at a time: what lanes cannot share.
     let mut moves: [Option<(Vec3, Q<f32>)>; W] = [None; W];
+    let mut crossings: [Option<(V3<f32>, f32)>; W] = [None; W];
     let mut easings = [None; W];
     for j in lanes.clone() {
         if L::mask_get(go, j - k) {
@@ -403,14 +397,57 @@ fn pass<L: Lane, K: ConstantStorage>(
         };
         alone[j] = true;
         easings[j] = Some(slot.easing_before(clock, waited[j]));
-        match slot.prepare(kind, step, waited[j], w) {
+        match slot.prepare(kind, step, waited[j], w, true) {
             Part::Done(outcome) => outcomes[j] = outcome,
             Part::Move { delta, tilt } => moves[j] = Some((delta, tilt)),
+            Part::Crossed { delta, t } => crossings[j] = Some((delta, t)),
         }
     }
+    // The piece sampled in lanes: where it goes on, and where a new one began (a step across
+    // one piece end: the move up to it added in).
+    let crossed = L::mask_from_fn(|j| k + j < W && crossings[k + j].is_some());
+    let sampled = L::or(go, crossed);
+    let t = if L::any(crossed) {
+        L::select(
+            crossed,
+            L::from_fn(|j| {
+                crossings
+                    .get(k + j)
+                    .and_then(Option::as_ref)
+                    .map_or(0.0, |c| c.1)
+            }),
+            t,
+        )
+    } else {
+        t
+    };
+    let (end, tilt) = if L::any(sampled) {
+        kernel::sample_piece(block, k, db, t)
+    } else {
+        (V3::splat(Vec3::ZERO), Q::identity())
+    };
+    let h = &block.hot;
+    let offset = V3::new(L::load(&h.ox, k), L::load(&h.oy, k), L::load(&h.oz, k));
+    let delta = kernel::turned((L::load(&h.tc, k), L::load(&h.ts, k)), end.sub(offset));
+    let delta = if L::any(crossed) {
+        let before = |f: fn(&V3<f32>) -> f32| {
+            L::from_fn(|j| {
+                crossings
+                    .get(k + j)
+                    .and_then(Option::as_ref)
+                    .map_or(0.0, |c| f(&c.0))
+            })
+        };
+        let before = V3::new(before(|v| v.x), before(|v| v.y), before(|v| v.z));
+        V3::select(crossed, before.add(delta), delta)
+    } else {
+        delta
+    };
     // The move and the orientation, in lanes, for all that move.
-    let moving = L::or(go, L::mask_from_fn(|j| k + j < W && moves[k + j].is_some()));
+    let alone_moves = L::mask_from_fn(|j| k + j < W && moves[k + j].is_some());
+    let moving = L::or(sampled, alone_moves);
     if L::any(moving) {
+        let go = sampled;
         let h = &block.hot;
         let t = L::select(go, t, L::load(&h.t, k));
         let offset = V3::select(
@@ -418,28 +455,36 @@ fn pass<L: Lane, K: ConstantStorage>(
             end,
             V3::new(L::load(&h.ox, k), L::load(&h.oy, k), L::load(&h.oz, k)),
         );
-        let part = |f: fn(&(Vec3, Q<f32>)) -> f32, none: f32| {
-            L::from_fn(|j| moves.get(k + j).and_then(Option::as_ref).map_or(none, f))
+        // The moves of the falls that went one at a time, gathered into lanes only where
+        // there are some (most blocks have none).
+        let (delta, tilt) = if L::any(alone_moves) {
+            let part = |f: fn(&(Vec3, Q<f32>)) -> f32, none: f32| {
+                L::from_fn(|j| moves.get(k + j).and_then(Option::as_ref).map_or(none, f))
+            };
+            (
+                V3::select(
+                    go,
+                    delta,
+                    V3::new(
+                        part(|m| m.0.x, 0.0),
+                        part(|m| m.0.y, 0.0),
+                        part(|m| m.0.z, 0.0),
+                    ),
+                ),
+                Q::select(
+                    go,
+                    tilt,
+                    Q::new(
+                        part(|m| m.1.x, 0.0),
+                        part(|m| m.1.y, 0.0),
+                        part(|m| m.1.z, 0.0),
+                        part(|m| m.1.w, 1.0),
+                    ),
+                ),
+            )
+        } else {
+            (delta, tilt)
         };
-        let delta = V3::select(
-            go,
-            delta,
-            V3::new(
-                part(|m| m.0.x, 0.0),
-                part(|m| m.0.y, 0.0),
-                part(|m| m.0.z, 0.0),
-            ),
-        );
-        let tilt = Q::select(
-            go,
-            tilt,
-            Q::new(
-                part(|m| m.1.x, 0.0),
-                part(|m| m.1.y, 0.0),
-                part(|m| m.1.z, 0.0),
-                part(|m| m.1.w, 1.0),
-            ),
-        );
         let landed = kernel::finish(
             &mut block.hot,
             k,

@@ -45,6 +45,18 @@ pub(crate) enum Part {
     /// The move (the still-fluid displacement `delta`, world frame, m) and the orientation
     /// (the plate's `tilt` in the heading frame): the piece's clock and offset are written.
     Move { delta: Vec3, tilt: Q<f32> },
+    /// A piece ended and the next began (compiled in the block, its clock and offset at 0):
+    /// left to sample is the new piece at piece time `t`, inside it, whose displacement (turned
+    /// by the heading) adds to `delta`, the move up to its start. Only where the lanes take
+    /// it ([`Slot::prepare`]'s `lanes`), when the step crossed one piece end and no blend or
+    /// release fade runs: the same arithmetic as [`Part::Move`]'s, in lanes.
+    Crossed { delta: V3<f32>, t: f32 },
+}
+
+/// What [`Slot::still_step`] leaves: the whole step, or a crossing for the lanes to finish.
+enum Still {
+    Whole(Vec3, Q<f32>),
+    Crossed(V3<f32>, f32),
 }
 
 /// One fall of a store: lane `k` of `block` and its cold state.
@@ -119,8 +131,9 @@ impl<K: ConstantStorage> Slot<'_, K> {
     /// settles, or is lifted by a strong enough wind. ([`Slot::prepare`], then the move the
     /// lanes finish, one lane wide.)
     pub fn advance(&mut self, kind: &K, step: &Step, dt: f32, wind: Vec3) -> StepOutcome {
-        match self.prepare(kind, step, dt, wind) {
+        match self.prepare(kind, step, dt, wind, false) {
             Part::Done(outcome) => outcome,
+            Part::Crossed { .. } => unreachable!("a crossing is left only to lanes"),
             Part::Move { delta, tilt } => {
                 let k = self.k;
                 let c = kind.load::<f32>(&self.block.consts, k);
@@ -152,8 +165,9 @@ impl<K: ConstantStorage> Slot<'_, K> {
     /// piece is sampled at its new time, or crossed into the next ones (the Markov step, the
     /// swing search), blended from the last motion's; a fall whose release orientation is still
     /// fading is stepped whole. What is left, the move and the orientation of [`Part::Move`],
-    /// the lanes finish ([`kernel::finish`]) for many falls at once.
-    pub fn prepare(&mut self, kind: &K, step: &Step, dt: f32, wind: Vec3) -> Part {
+    /// the lanes finish ([`kernel::finish`]) for many falls at once; with `lanes`, a step that
+    /// crosses one piece end leaves the new piece's sample to them too ([`Part::Crossed`]).
+    pub fn prepare(&mut self, kind: &K, step: &Step, dt: f32, wind: Vec3, lanes: bool) -> Part {
         let (k, model) = (self.k, step.model);
         if self.landed() {
             let c = kind.get(&self.block.consts, k);
@@ -178,7 +192,13 @@ impl<K: ConstantStorage> Slot<'_, K> {
             let delta = turned((h.tc[k], h.ts[k]), inc).vec3();
             return Part::Move { delta, tilt };
         }
-        let (delta, tilt) = self.still_step(model, dt, wind);
+        let (delta, tilt) = match self.still_step(model, dt, wind, lanes) {
+            Still::Whole(delta, tilt) => (delta, tilt),
+            Still::Crossed(delta, t) => {
+                self.set_plain();
+                return Part::Crossed { delta, t };
+            }
+        };
         let tilt = match &self.cold.previous {
             Some(old) => old.shown(db, tilt),
             None => tilt,
@@ -204,8 +224,10 @@ impl<K: ConstantStorage> Slot<'_, K> {
     }
 
     /// Still-fluid displacement over `dt` (world frame), crossing pieces as needed, and the
-    /// plate's tilt at the end.
-    fn still_step(&mut self, model: &FallModel, dt: f32, wind: Vec3) -> (Vec3, Q<f32>) {
+    /// plate's tilt at the end; with `lanes`, a step that crosses one piece end into a piece it
+    /// ends inside, with no blend or release fade, stops at the crossing ([`Still::Crossed`]:
+    /// the lanes sample the new piece as the loop's next turn would).
+    fn still_step(&mut self, model: &FallModel, dt: f32, wind: Vec3, lanes: bool) -> Still {
         let db = model.database();
         let k = self.k;
         let turn = (self.block.hot.tc[k], self.block.hot.ts[k]);
@@ -252,6 +274,16 @@ impl<K: ConstantStorage> Slot<'_, K> {
                 self.next_piece(model, wind);
                 tilt = None;
                 crossed += 1;
+                // The loop's next turn would sample the new piece at `remaining` (its clock
+                // and offset at 0) and end: the lanes do that for many falls at once.
+                if lanes
+                    && remaining > 0.0
+                    && remaining < self.block.hot.duration[k]
+                    && self.cold.previous.is_none()
+                    && self.cold.release.is_none()
+                {
+                    return Still::Crossed(delta, 0.0 + remaining);
+                }
             }
         }
         if remaining > 0.0 {
@@ -262,7 +294,7 @@ impl<K: ConstantStorage> Slot<'_, K> {
             let t = self.block.hot.t[k];
             sample_piece::<f32, K>(self.block, k, db, t).1
         });
-        (delta.vec3(), tilt)
+        Still::Whole(delta.vec3(), tilt)
     }
 
     /// The Markov step at the end of a piece (§3.2: the motion changes when its sojourn is
