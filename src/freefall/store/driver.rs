@@ -408,16 +408,7 @@ fn pass<L: Lane, K: ConstantStorage>(
     let crossed = L::mask_from_fn(|j| k + j < W && crossings[k + j].is_some());
     let sampled = L::or(go, crossed);
     let t = if L::any(crossed) {
-        L::select(
-            crossed,
-            L::from_fn(|j| {
-                crossings
-                    .get(k + j)
-                    .and_then(Option::as_ref)
-                    .map_or(0.0, |c| c.1)
-            }),
-            t,
-        )
+        L::select(crossed, gather(&crossings, k, 0.0, |c| c.1), t)
     } else {
         t
     };
@@ -430,15 +421,11 @@ fn pass<L: Lane, K: ConstantStorage>(
     let offset = V3::new(L::load(&h.ox, k), L::load(&h.oy, k), L::load(&h.oz, k));
     let delta = kernel::turned((L::load(&h.tc, k), L::load(&h.ts, k)), end.sub(offset));
     let delta = if L::any(crossed) {
-        let before = |f: fn(&V3<f32>) -> f32| {
-            L::from_fn(|j| {
-                crossings
-                    .get(k + j)
-                    .and_then(Option::as_ref)
-                    .map_or(0.0, |c| f(&c.0))
-            })
-        };
-        let before = V3::new(before(|v| v.x), before(|v| v.y), before(|v| v.z));
+        let before = V3::new(
+            gather(&crossings, k, 0.0, |c| c.0.x),
+            gather(&crossings, k, 0.0, |c| c.0.y),
+            gather(&crossings, k, 0.0, |c| c.0.z),
+        );
         V3::select(crossed, before.add(delta), delta)
     } else {
         delta
@@ -458,29 +445,21 @@ fn pass<L: Lane, K: ConstantStorage>(
         // The moves of the falls that went one at a time, gathered into lanes only where
         // there are some (most blocks have none).
         let (delta, tilt) = if L::any(alone_moves) {
-            let part = |f: fn(&(Vec3, Q<f32>)) -> f32, none: f32| {
-                L::from_fn(|j| moves.get(k + j).and_then(Option::as_ref).map_or(none, f))
-            };
+            let part = |f: fn(&(Vec3, Q<f32>)) -> f32, none| gather(&moves, k, none, f);
+            let their_delta = V3::new(
+                part(|m| m.0.x, 0.0),
+                part(|m| m.0.y, 0.0),
+                part(|m| m.0.z, 0.0),
+            );
+            let their_tilt = Q::new(
+                part(|m| m.1.x, 0.0),
+                part(|m| m.1.y, 0.0),
+                part(|m| m.1.z, 0.0),
+                part(|m| m.1.w, 1.0),
+            );
             (
-                V3::select(
-                    go,
-                    delta,
-                    V3::new(
-                        part(|m| m.0.x, 0.0),
-                        part(|m| m.0.y, 0.0),
-                        part(|m| m.0.z, 0.0),
-                    ),
-                ),
-                Q::select(
-                    go,
-                    tilt,
-                    Q::new(
-                        part(|m| m.1.x, 0.0),
-                        part(|m| m.1.y, 0.0),
-                        part(|m| m.1.z, 0.0),
-                        part(|m| m.1.w, 1.0),
-                    ),
-                ),
+                V3::select(go, delta, their_delta),
+                Q::select(go, tilt, their_tilt),
             )
         } else {
             (delta, tilt)
@@ -518,4 +497,10 @@ fn pass<L: Lane, K: ConstantStorage>(
             .easing_after(before, clock);
         }
     }
+}
+
+/// Lanes of `f` of the items `k..k + L::WIDTH` (`none` where a lane has no item).
+#[inline(always)]
+fn gather<L: Lane, T>(items: &[Option<T>; W], k: usize, none: f32, f: impl Fn(&T) -> f32) -> L {
+    L::from_fn(|j| items.get(k + j).and_then(Option::as_ref).map_or(none, &f))
 }
