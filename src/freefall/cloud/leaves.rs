@@ -252,3 +252,66 @@ impl CloudLeaves {
     /// work (≈ 50 µs), small enough that two threads share the work of a few thousand leaves.
     pub const CHUNK: usize = 512;
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::freefall::LeafCloud;
+
+    /// Every leaf's position, drift, motion and piece clock, as bits, after steps of `dts`
+    /// seconds in still air with the store's lanes `width` wide.
+    fn bits_after(width: usize, dts: &[f32]) -> Vec<u32> {
+        let model = FallModel::default();
+        let cloud = LeafCloud {
+            count: 200,
+            seed: 3,
+            ..LeafCloud::default()
+        };
+        // Far below: every leaf falls for the whole run.
+        let mut leaves = cloud.leaves(&model, -1.0e6).unwrap();
+        let step = Step {
+            model: &model,
+            air: Air::Still,
+            focus: None,
+            width,
+            recycle_after: None,
+        };
+        for &dt in dts {
+            leaves.store.step(dt, &step, None);
+        }
+        leaves
+            .paths()
+            .flat_map(|leaf| {
+                let (p, v) = (leaf.position(), leaf.drift());
+                [p.x, p.y, p.z, v.x, v.y, v.z, leaf.time()]
+                    .map(f32::to_bits)
+                    .into_iter()
+                    .chain([leaf.motion() as u32])
+            })
+            .collect()
+    }
+
+    /// One, four and eight lanes (where this CPU has them) give every leaf the same bits, over
+    /// frame-length steps and over steps of seconds that cross tens of pieces, up to the most
+    /// one step may cross (after which a leaf falls straight on).
+    #[test]
+    fn every_lane_width_gives_every_leaf_the_same_bits_over_short_and_long_steps() {
+        let mut dts = vec![1.0 / 60.0; 30];
+        // 5 to 12 s: about 40 to 100 pieces of a default leaf's tenth of a second and more.
+        dts.extend((0..24).map(|i| 5.0 + 0.29 * i as f32));
+        dts.extend([1.0 / 60.0, 0.5, 1.0 / 24.0, FallRelease::MAX_STEP]);
+        let one = bits_after(1, &dts);
+        let widths = [4, 8]
+            .into_iter()
+            .filter(|&w| w <= crate::portable::widest_lanes());
+        for width in widths {
+            let lanes = bits_after(width, &dts);
+            let differ = one
+                .chunks(8)
+                .zip(lanes.chunks(8))
+                .filter(|(a, b)| a != b)
+                .count();
+            assert_eq!(differ, 0, "{differ} of 200 leaves differ at width {width}");
+        }
+    }
+}

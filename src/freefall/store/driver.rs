@@ -5,8 +5,9 @@
 //! 2. one branch-free lane pass over the falls whose piece goes on ([`kernel::usual`]);
 //! 3. the others (a piece ends and the chain steps, a swing is searched, a blend, a release
 //!    fading, an easing, a landing, a fall at rest) one at a time, in lane order, through the
-//!    same kernels ([`Slot::prepare`]); a fall whose step crosses one piece end leaves the
-//!    new piece's sample to the lanes, which take it with the falls whose piece goes on;
+//!    same kernels ([`Slot::prepare`]); a fall whose step ends in a piece it crossed into
+//!    leaves the new piece's sample to the lanes, which take it with the falls whose piece
+//!    goes on;
 //! 4. for each fall stepped, its tier measured again and the span its pose is shown over.
 //!
 //! Bands changed, landings and motion changes are reported, and applied after the parallel
@@ -317,7 +318,7 @@ impl<K: ConstantStorage> Lanes<'_, '_, K> {
     /// The falls in lanes `k..k + L::WIDTH`: the wind read for them at once; the falls whose
     /// piece goes on and those at rest in lanes; the others one at a time
     /// ([`Slot::prepare`]), their move and orientation finished in lanes with the usual ones
-    /// (and the new piece sampled in lanes where a step crossed one piece end).
+    /// (and the new piece sampled in lanes where a step ended in a piece it crossed into).
     #[inline(always)]
     fn pass<L: Lane>(&mut self, k: usize) {
         let Lanes {

@@ -48,8 +48,9 @@ pub(crate) enum Part {
     /// A piece ended and the next began (compiled in the block, its clock and offset at 0):
     /// left to sample is the new piece at piece time `t`, inside it, whose displacement (turned
     /// by the heading) adds to `delta`, the move up to its start. Only where the lanes take
-    /// it ([`Slot::prepare`]'s `lanes`), when the step crossed one piece end and no blend or
-    /// release fade runs: the same arithmetic as [`Part::Move`]'s, in lanes.
+    /// it ([`Slot::prepare`]'s `lanes`), when the step ends inside the piece its last crossing
+    /// began (under the cap on pieces a step crosses) and no blend or release fade runs: the
+    /// arithmetic the one-at-a-time loop would do, in lanes.
     Crossed { delta: V3<f32>, t: f32 },
 }
 
@@ -166,7 +167,8 @@ impl<K: ConstantStorage> Slot<'_, K> {
     /// swing search), blended from the last motion's; a fall whose release orientation is still
     /// fading is stepped whole. What is left, the move and the orientation of [`Part::Move`],
     /// the lanes finish ([`kernel::finish`]) for many falls at once; with `lanes`, a step that
-    /// crosses one piece end leaves the new piece's sample to them too ([`Part::Crossed`]).
+    /// crosses into a piece it ends in leaves the new piece's sample to them too
+    /// ([`Part::Crossed`]).
     pub fn prepare(&mut self, kind: &K, step: &Step, dt: f32, wind: Vec3, lanes: bool) -> Part {
         let (k, model) = (self.k, step.model);
         if self.landed() {
@@ -224,9 +226,10 @@ impl<K: ConstantStorage> Slot<'_, K> {
     }
 
     /// Still-fluid displacement over `dt` (world frame), crossing pieces as needed, and the
-    /// plate's tilt at the end; with `lanes`, a step that crosses one piece end into a piece it
-    /// ends inside, with no blend or release fade, stops at the crossing ([`Still::Crossed`]:
-    /// the lanes sample the new piece as the loop's next turn would).
+    /// plate's tilt at the end; with `lanes`, a step that ends inside the piece a crossing
+    /// began, with no blend or release fade and under [`MAX_PIECES_PER_STEP`], stops at that
+    /// crossing ([`Still::Crossed`]: the lanes sample the new piece as the loop's next turn
+    /// would).
     fn still_step(&mut self, model: &FallModel, dt: f32, wind: Vec3, lanes: bool) -> Still {
         let db = model.database();
         let k = self.k;
@@ -277,6 +280,7 @@ impl<K: ConstantStorage> Slot<'_, K> {
                 // The loop's next turn would sample the new piece at `remaining` (its clock
                 // and offset at 0) and end: the lanes do that for many falls at once.
                 if lanes
+                    && crossed < MAX_PIECES_PER_STEP
                     && remaining > 0.0
                     && remaining < self.block.hot.duration[k]
                     && self.cold.previous.is_none()
