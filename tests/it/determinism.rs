@@ -55,6 +55,10 @@ fn same_seed_same_wind_bit_for_bit() {
     }
 }
 
+/// The falls' fingerprint since the store's eight lanes (CHANGELOG): the same natively, in
+/// every lane width and thread count, and in Chromium.
+const FINGERPRINT: &str = "bd9d5c7845327134";
+
 #[path = "../../examples/common/fingerprint.rs"]
 pub(crate) mod fingerprint;
 
@@ -104,6 +108,9 @@ fn falls_have_the_same_bits_in_any_lanes_on_any_number_of_threads() {
     }
     assert_eq!(seen.len(), 3 * widths.len(), "{seen:?}");
     assert!(seen.iter().all(|h| *h == seen[0]), "{seen:?}");
+    // And the value itself: a change to any fall's bits is made on purpose, said in the
+    // CHANGELOG, and the value here with it (CI compares the browser's with the desktop's).
+    assert_eq!(seen[0], FINGERPRINT, "the falls' bits changed");
 }
 
 /// The bits of `leaf`'s fall (position, orientation, drift, motion, landing) after each of

@@ -259,8 +259,8 @@ mod tests {
     use crate::freefall::LeafCloud;
 
     /// Every leaf's position, drift, motion and piece clock, as bits, after steps of `dts`
-    /// seconds in still air with the store's lanes `width` wide.
-    fn bits_after(width: usize, dts: &[f32]) -> Vec<u32> {
+    /// seconds in `wind` (`None`: still air) with the store's lanes `width` wide.
+    fn bits_after(width: usize, dts: &[f32], wind: Option<&WindField>) -> Vec<u32> {
         let model = FallModel::default();
         let cloud = LeafCloud {
             count: 200,
@@ -271,7 +271,7 @@ mod tests {
         let mut leaves = cloud.leaves(&model, -1.0e6).unwrap();
         let step = Step {
             model: &model,
-            air: Air::Still,
+            air: wind.map_or(Air::Still, Air::Field),
             focus: None,
             width,
             recycle_after: None,
@@ -300,18 +300,26 @@ mod tests {
         // 5 to 12 s: about 40 to 100 pieces of a default leaf's tenth of a second and more.
         dts.extend((0..24).map(|i| 5.0 + 0.29 * i as f32));
         dts.extend([1.0 / 60.0, 0.5, 1.0 / 24.0, FallRelease::MAX_STEP]);
-        let one = bits_after(1, &dts);
-        let widths = [4, 8]
-            .into_iter()
-            .filter(|&w| w <= crate::portable::widest_lanes());
-        for width in widths {
-            let lanes = bits_after(width, &dts);
-            let differ = one
-                .chunks(8)
-                .zip(lanes.chunks(8))
-                .filter(|(a, b)| a != b)
-                .count();
-            assert_eq!(differ, 0, "{differ} of 200 leaves differ at width {width}");
+        // In wind a tumbling swing's end depends on the wind (its survival), in still air not.
+        let field = WindField::new(crate::wind::WindConfig::default()).unwrap();
+        for wind in [None, Some(&field)] {
+            let one = bits_after(1, &dts, wind);
+            let widths = [4, 8]
+                .into_iter()
+                .filter(|&w| w <= crate::portable::widest_lanes());
+            for width in widths {
+                let lanes = bits_after(width, &dts, wind);
+                let differ = one
+                    .chunks(8)
+                    .zip(lanes.chunks(8))
+                    .filter(|(a, b)| a != b)
+                    .count();
+                let air = if wind.is_some() { "wind" } else { "still air" };
+                assert_eq!(
+                    differ, 0,
+                    "{differ} of 200 leaves differ at width {width} in {air}"
+                );
+            }
         }
     }
 }
