@@ -118,6 +118,10 @@ pub struct ParticleCloth {
     yarns: yarns::Yarns,
     /// Shear: (node a, node b, rest length, compliance), both diagonals of every cell.
     shear: Vec<(u32, u32, f32, f32)>,
+    /// Runs of shear constraints and of bending constraints that share no node
+    /// ([`constraints::disjoint_runs`]).
+    shear_runs: Vec<(u32, u32)>,
+    bend_runs: Vec<(u32, u32)>,
     /// Bending: three consecutive nodes (a, b, c) along a row or a column and the compliance of
     /// x_a − 2 x_b + x_c = 0, m/N.
     bends: Vec<(u32, u32, u32, f32)>,
@@ -307,6 +311,12 @@ impl ParticleCloth {
             beta,
             yarns,
             shear_lambdas: vec![0.0; shear.len()],
+            shear_runs: constraints::disjoint_runs(
+                &shear.iter().map(|s| [s.0, s.1]).collect::<Vec<_>>(),
+            ),
+            bend_runs: constraints::disjoint_runs(
+                &bends.iter().map(|b| [b.0, b.1, b.2]).collect::<Vec<_>>(),
+            ),
             shear,
             bend_lambdas: vec![Vec3::ZERO; bends.len()],
             bends,

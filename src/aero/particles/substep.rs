@@ -126,8 +126,22 @@ impl ParticleCloth {
         self.bend_lambdas.fill(Vec3::ZERO);
         let mut strain = 0.0;
         for _ in 0..self.iterations.clamp(1, ParticleCloth::MAX_ITERATIONS) {
-            project_bending(x, inertia, &self.bends, &mut self.bend_lambdas, h);
-            project_distances(x, inertia, &self.shear, &mut self.shear_lambdas, h);
+            project_bending(
+                x,
+                inertia,
+                &self.bends,
+                &mut self.bend_lambdas,
+                &self.bend_runs,
+                h,
+            );
+            project_distances(
+                x,
+                inertia,
+                &self.shear,
+                &mut self.shear_lambdas,
+                &self.shear_runs,
+                h,
+            );
             for _ in 0..MOST_LINEARISATIONS {
                 self.yarns.project(x, inertia);
                 project_tethers(x, inertia, &self.tethers);

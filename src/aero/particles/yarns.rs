@@ -8,7 +8,9 @@
 
 use bevy::math::Vec3;
 
-use super::constraints::Inertia;
+use super::constraints::{Inertia, finite, gather};
+use crate::portable::geometry::V3;
+use crate::portable::lane::Lane;
 
 /// How the yarns' solves have gone since the cloth was made: [`ParticleCloth::yarn_solves`](super::ParticleCloth::yarn_solves).
 ///
@@ -151,22 +153,12 @@ impl Yarns {
     /// Projects `x` onto the yarns' rest lengths (one linearisation).
     pub(super) fn project(&mut self, x: &mut [Vec3], inertia: Inertia) {
         let count = self.rest.len();
-        for e in 0..count {
-            let (a, b) = (self.ends[e].0 as usize, self.ends[e].1 as usize);
-            let delta = x[b] - x[a];
-            let length = delta.length();
-            let d = delta * (1.0 / length);
-            let diagonal = inertia.product(a, d, d) + inertia.product(b, d, d);
-            if length > 0.0 && diagonal > 0.0 && diagonal.is_finite() && d.is_finite() {
-                self.direction[e] = d;
-                self.diagonal[e] = diagonal;
-                self.r[e] = self.rest[e] - length;
-            } else {
-                // Both ends pinned, or a degenerate edge: left as it is.
-                self.direction[e] = Vec3::ZERO;
-                self.diagonal[e] = 1.0;
-                self.r[e] = 0.0;
-            }
+        let lanes = count - count % 4;
+        for first in (0..lanes).step_by(4) {
+            self.linearise::<wide::f32x4>(x, inertia, first);
+        }
+        for e in lanes..count {
+            self.linearise::<f32>(x, inertia, e);
         }
         // The lines' blocks (a line's last edge couples to nothing) and their factors.
         for &(first, length, count) in &self.families {
@@ -212,6 +204,36 @@ impl Yarns {
             if dx.is_finite() {
                 *x += *dx;
             }
+        }
+    }
+
+    /// Each of `L::WIDTH` edges from `first`: its direction, its diagonal J W Jᵀ and its
+    /// constraint's value (rest − length) at `x`; a degenerate edge, or one with both ends
+    /// pinned, is left as it is (no direction, diagonal 1, nothing to solve).
+    #[inline(always)]
+    fn linearise<L: Lane>(&mut self, x: &[Vec3], inertia: Inertia, first: usize) {
+        let a = |k: usize| self.ends[first + k].0 as usize;
+        let b = |k: usize| self.ends[first + k].1 as usize;
+        let delta = gather::<L>(x, b).sub(gather::<L>(x, a));
+        let length = delta.length_squared().sqrt();
+        let d = delta.scale(L::splat(1.0) / length);
+        let diagonal = inertia.square_lanes(a, d) + inertia.square_lanes(b, d);
+        let zero = L::splat(0.0);
+        let valid = L::and(
+            L::and(zero.lt(length), zero.lt(diagonal)),
+            L::and(
+                finite(diagonal),
+                L::and(finite(d.x), L::and(finite(d.y), finite(d.z))),
+            ),
+        );
+        let d = V3::select(valid, d, V3::new(zero, zero, zero));
+        let diagonal = L::select(valid, diagonal, L::splat(1.0));
+        let rest = L::from_fn(|k| self.rest[first + k]);
+        let r = L::select(valid, rest - length, zero);
+        for k in 0..L::WIDTH {
+            self.direction[first + k] = Vec3::new(d.x.get(k), d.y.get(k), d.z.get(k));
+            self.diagonal[first + k] = diagonal.get(k);
+            self.r[first + k] = r.get(k);
         }
     }
 
@@ -325,6 +347,84 @@ impl Yarns {
                 let i = k * columns + j;
                 self.push[i] = inertia.apply(i, f);
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::aero::particles::constraints::tests::unit;
+
+    #[test]
+    fn edges_linearised_in_lanes_have_the_bits_of_one_at_a_time() {
+        let (rows, columns) = (5, 7);
+        let n = rows * columns;
+        let rest: Vec<Vec3> = (0..n)
+            .map(|i| {
+                Vec3::new(
+                    (i % columns) as f32 * 0.1,
+                    -((i / columns) as f32) * 0.1,
+                    0.0,
+                )
+            })
+            .collect();
+        for seed in 0..20u64 {
+            let r = |i: u64| unit(seed * 7_919 + i);
+            let mut x: Vec<Vec3> = rest
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    *p + Vec3::new(r(3 * i as u64), r(3 * i as u64 + 1), r(3 * i as u64 + 2)) * 0.03
+                })
+                .collect();
+            // Extremes: an edge of zero length (the 8th, from node 8 to 9), a NaN, a node far
+            // off.
+            x[9] = x[8];
+            if seed % 2 == 0 {
+                x[20].z = f32::NAN;
+            }
+            x[30] *= 1e25;
+            let normals: Vec<Vec3> = (0..n as u64)
+                .map(|i| Vec3::new(r(500 + i), r(600 + i), 1.0).normalize_or_zero())
+                .collect();
+            let inverse_mass: Vec<f32> = (0..n)
+                .map(|i| if i % columns == 0 { 0.0 } else { 20.0 })
+                .collect();
+            let beta: Vec<f32> = (0..n as u64).map(|i| 0.5 + 0.4 * r(800 + i)).collect();
+            let inertia = Inertia {
+                inverse_mass: &inverse_mass,
+                normals: &normals,
+                beta: &beta,
+            };
+            let mut lanes = Yarns::new(rows, columns, &rest);
+            let mut one = lanes.clone();
+            let count = lanes.rest.len();
+            assert!(count >= 8 && !count.is_multiple_of(4));
+            for first in (0..count - count % 4).step_by(4) {
+                lanes.linearise::<wide::f32x4>(&x, inertia, first);
+            }
+            for e in 0..count {
+                if e >= count - count % 4 {
+                    lanes.linearise::<f32>(&x, inertia, e);
+                }
+                one.linearise::<f32>(&x, inertia, e);
+            }
+            let bits = |y: &Yarns| {
+                y.direction
+                    .iter()
+                    .flat_map(|d| [d.x, d.y, d.z])
+                    .chain(y.diagonal.iter().copied())
+                    .chain(y.r.iter().copied())
+                    .map(f32::to_bits)
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(bits(&lanes), bits(&one), "seed {seed}");
+            // Both ends pinned (the pole's yarn) or degenerate: left as they are.
+            let pole = rows * (columns - 1);
+            assert_eq!((one.direction[pole], one.diagonal[pole]), (Vec3::ZERO, 1.0));
+            assert_eq!((one.direction[7], one.diagonal[7]), (Vec3::ZERO, 1.0));
+            assert!(one.diagonal[1] > 0.0 && one.direction[1].is_normalized());
         }
     }
 }
