@@ -109,13 +109,32 @@ fn scatter<L: Lane>(values: &mut [Vec3], node: impl Fn(usize) -> usize, v: V3<L>
     }
 }
 
+/// The inverse inertia of each lane's node, gathered once: 1/m, n and β.
+#[derive(Clone, Copy)]
+pub(super) struct LaneInertia<L> {
+    inverse_mass: L,
+    normal: V3<L>,
+    beta: L,
+}
+
 impl Inertia<'_> {
-    /// W e at each lane's node, as [`Inertia::apply`] computes it.
+    /// The inverse inertia of node `node(k)` in lane k.
     #[inline(always)]
-    fn apply_lanes<L: Lane>(&self, node: impl Fn(usize) -> usize + Copy, e: V3<L>) -> V3<L> {
-        let n = gather::<L>(self.normals, node);
-        let w = L::from_fn(|k| self.inverse_mass[node(k)]);
-        let k = L::from_fn(|k| self.beta[node(k)]) * ((n.x * e.x + n.y * e.y) + n.z * e.z);
+    pub(super) fn lanes<L: Lane>(&self, node: impl Fn(usize) -> usize + Copy) -> LaneInertia<L> {
+        LaneInertia {
+            inverse_mass: L::from_fn(|k| self.inverse_mass[node(k)]),
+            normal: gather::<L>(self.normals, node),
+            beta: L::from_fn(|k| self.beta[node(k)]),
+        }
+    }
+}
+
+impl<L: Lane> LaneInertia<L> {
+    /// W e, as [`Inertia::apply`] computes it.
+    #[inline(always)]
+    pub(super) fn apply(&self, e: V3<L>) -> V3<L> {
+        let (n, w) = (self.normal, self.inverse_mass);
+        let k = self.beta * ((n.x * e.x + n.y * e.y) + n.z * e.z);
         V3::new(
             w * (e.x - k * n.x),
             w * (e.y - k * n.y),
@@ -123,17 +142,12 @@ impl Inertia<'_> {
         )
     }
 
-    /// eᵀ W e at each lane's node, as [`Inertia::product`] computes it.
+    /// eᵀ W e, as [`Inertia::product`] computes it.
     #[inline(always)]
-    pub(super) fn square_lanes<L: Lane>(
-        &self,
-        node: impl Fn(usize) -> usize + Copy,
-        e: V3<L>,
-    ) -> L {
-        let n = gather::<L>(self.normals, node);
-        let w = L::from_fn(|k| self.inverse_mass[node(k)]);
+    pub(super) fn square(&self, e: V3<L>) -> L {
+        let n = self.normal;
         let along = (n.x * e.x + n.y * e.y) + n.z * e.z;
-        w * (e.length_squared() - L::from_fn(|k| self.beta[node(k)]) * along * along)
+        self.inverse_mass * (e.length_squared() - self.beta * along * along)
     }
 }
 
@@ -175,14 +189,15 @@ fn distances<L: Lane>(
     let length = delta.length_squared().sqrt();
     let valid = L::and(L::splat(0.0).lt(length), finite(length));
     let e = delta.scale(L::splat(1.0) / length);
-    let w = inertia.square_lanes(a, e) + inertia.square_lanes(b, e);
+    let (ia, ib) = (inertia.lanes::<L>(a), inertia.lanes::<L>(b));
+    let w = ia.square(e) + ib.square(e);
     let alpha = L::from_fn(|k| constraints[k].3) / L::splat(squared);
     let valid = L::and(valid, L::splat(0.0).lt(w + alpha));
     let lambda = L::from_fn(|k| lambdas[k]);
     let rest = L::from_fn(|k| constraints[k].2);
     let dl = (rest - length - alpha * lambda) / (w + alpha);
     let e = e.scale(dl);
-    let (pa, pb) = (inertia.apply_lanes(a, e), inertia.apply_lanes(b, e));
+    let (pa, pb) = (ia.apply(e), ib.apply(e));
     scatter(x, a, xa.add(pa), valid);
     scatter(x, b, xb.sub(pb), valid);
     let lambda = L::select(valid, lambda + dl, lambda);
@@ -230,11 +245,15 @@ fn bending<L: Lane>(
     let mut diagonal = alpha;
     let zero = L::splat(0.0);
     let [mut xx, mut yy, mut zz, mut xy, mut xz, mut yz] = [zero; 6];
-    for (which, weight) in [(0, 1.0), (1, 4.0), (2, 1.0)] {
-        let node = |k: usize| [a(k), b(k), c(k)][which];
-        let w = L::splat(weight) * L::from_fn(|k| inertia.inverse_mass[node(k)]);
-        let n = gather::<L>(inertia.normals, node);
-        let s = w * L::from_fn(|k| inertia.beta[node(k)]);
+    let nodes = [
+        inertia.lanes::<L>(a),
+        inertia.lanes::<L>(b),
+        inertia.lanes::<L>(c),
+    ];
+    for (node, weight) in nodes.iter().zip([1.0, 4.0, 1.0]) {
+        let w = L::splat(weight) * node.inverse_mass;
+        let n = node.normal;
+        let s = w * node.beta;
         diagonal = diagonal + w;
         xx = xx - s * n.x * n.x;
         yy = yy - s * n.y * n.y;
@@ -271,9 +290,10 @@ fn bending<L: Lane>(
         valid,
         L::and(finite(dl.x), L::and(finite(dl.y), finite(dl.z))),
     );
-    scatter(x, a, xa.add(inertia.apply_lanes(a, dl)), valid);
-    scatter(x, b, xb.sub(inertia.apply_lanes(b, dl).scale(two)), valid);
-    scatter(x, c, xc.add(inertia.apply_lanes(c, dl)), valid);
+    let [ia, ib, ic] = nodes;
+    scatter(x, a, xa.add(ia.apply(dl)), valid);
+    scatter(x, b, xb.sub(ib.apply(dl).scale(two)), valid);
+    scatter(x, c, xc.add(ic.apply(dl)), valid);
     let lambda = V3::select(valid, lambda.add(dl), lambda);
     for (k, l) in lambdas.iter_mut().enumerate() {
         *l = Vec3::new(lambda.x.get(k), lambda.y.get(k), lambda.z.get(k));
@@ -317,6 +337,18 @@ pub(super) mod tests {
         ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 23) as f32 - 1.0
     }
 
+    /// Unit normals tilted off +Z and each node's β in (0.1, 0.9), from `r`.
+    pub(in crate::aero::particles) fn normals_and_betas(
+        nodes: usize,
+        r: impl Fn(u64) -> f32,
+    ) -> (Vec<Vec3>, Vec<f32>) {
+        let normals = (0..nodes as u64)
+            .map(|i| Vec3::new(r(500 + i), r(600 + i), 1.0).normalize_or_zero())
+            .collect();
+        let beta = (0..nodes as u64).map(|i| 0.5 + 0.4 * r(800 + i)).collect();
+        (normals, beta)
+    }
+
     #[test]
     fn runs_in_lanes_give_every_node_the_bits_of_one_constraint_at_a_time() {
         let nodes = 60;
@@ -331,9 +363,7 @@ pub(super) mod tests {
                 x[11].y = f32::NAN;
             }
             x[13] *= 1e20;
-            let normals: Vec<Vec3> = (0..nodes as u64)
-                .map(|i| Vec3::new(r(500 + i), r(600 + i), 1.0).normalize_or_zero())
-                .collect();
+            let (normals, beta) = normals_and_betas(nodes, r);
             let inverse_mass: Vec<f32> = (0..nodes as u64)
                 .map(|i| {
                     if i % 9 == 0 {
@@ -343,7 +373,6 @@ pub(super) mod tests {
                     }
                 })
                 .collect();
-            let beta: Vec<f32> = (0..nodes as u64).map(|i| 0.5 + 0.4 * r(800 + i)).collect();
             let inertia = Inertia {
                 inverse_mass: &inverse_mass,
                 normals: &normals,

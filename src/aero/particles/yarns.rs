@@ -217,7 +217,7 @@ impl Yarns {
         let delta = gather::<L>(x, b).sub(gather::<L>(x, a));
         let length = delta.length_squared().sqrt();
         let d = delta.scale(L::splat(1.0) / length);
-        let diagonal = inertia.square_lanes(a, d) + inertia.square_lanes(b, d);
+        let diagonal = inertia.lanes::<L>(a).square(d) + inertia.lanes::<L>(b).square(d);
         let zero = L::splat(0.0);
         let valid = L::and(
             L::and(zero.lt(length), zero.lt(diagonal)),
@@ -354,7 +354,7 @@ impl Yarns {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::aero::particles::constraints::tests::unit;
+    use crate::aero::particles::constraints::tests::{normals_and_betas, unit};
 
     #[test]
     fn edges_linearised_in_lanes_have_the_bits_of_one_at_a_time() {
@@ -385,13 +385,10 @@ mod tests {
                 x[20].z = f32::NAN;
             }
             x[30] *= 1e25;
-            let normals: Vec<Vec3> = (0..n as u64)
-                .map(|i| Vec3::new(r(500 + i), r(600 + i), 1.0).normalize_or_zero())
-                .collect();
+            let (normals, beta) = normals_and_betas(n, r);
             let inverse_mass: Vec<f32> = (0..n)
                 .map(|i| if i % columns == 0 { 0.0 } else { 20.0 })
                 .collect();
-            let beta: Vec<f32> = (0..n as u64).map(|i| 0.5 + 0.4 * r(800 + i)).collect();
             let inertia = Inertia {
                 inverse_mass: &inverse_mass,
                 normals: &normals,
