@@ -37,7 +37,8 @@ impl Inertia<'_> {
 /// a run of [`RUN`] is projected side by side in SIMD lanes. Gauss–Seidel over constraints that
 /// share no node does not depend on their order, and every lane does the scalar code's IEEE
 /// operations in the same order, so a run gives each node the bits one constraint at a time
-/// would.
+/// would. A constraint's own nodes are distinct (as the grid builds them): its kernel reads them
+/// all before it writes any.
 pub(super) fn disjoint_runs<const K: usize>(nodes: &[[u32; K]]) -> Vec<(u32, u32)> {
     let mut runs = Vec::new();
     let mut start = 0;
@@ -388,6 +389,13 @@ pub(super) mod tests {
                     bends.push((a, b, c, 1e-3 * (1.0 + r(2000 + i))));
                     shear.push((a, c, 0.5 + 0.2 * r(3000 + i), 1e-4 * (1.0 + r(4000 + i))));
                 }
+                // Rigid constraints between pinned nodes (every ninth): nothing to move them
+                // (w + α = 0, a zero determinant), skipped in their lanes.
+                if i % 7 == 0 {
+                    let pinned = |k: u64| (9 * ((i / 7 + k) % 7)) as u32;
+                    bends.push((pinned(0), pinned(1), pinned(2), 0.0));
+                    shear.push((pinned(3), pinned(5), 0.3, 0.0));
+                }
             }
             let bend_runs =
                 disjoint_runs(&bends.iter().map(|b| [b.0, b.1, b.2]).collect::<Vec<_>>());
@@ -397,8 +405,9 @@ pub(super) mod tests {
             let single = |count: usize| (0..count as u32).map(|i| (i, 1)).collect::<Vec<_>>();
             let run = |bend_runs: &[(u32, u32)], shear_runs: &[(u32, u32)]| {
                 let mut x = x.clone();
-                let mut bend_lambdas = vec![Vec3::new(r(1), 0.0, -r(2)) * 1e-3; bends.len()];
-                let mut shear_lambdas = vec![r(3) * 1e-3; shear.len()];
+                let (bend_start, shear_start) = (Vec3::new(r(1), 0.0, -r(2)) * 1e-3, r(3) * 1e-3);
+                let mut bend_lambdas = vec![bend_start; bends.len()];
+                let mut shear_lambdas = vec![shear_start; shear.len()];
                 for _ in 0..3 {
                     project_bending(&mut x, inertia, &bends, &mut bend_lambdas, bend_runs, 2e-3);
                     project_distances(
@@ -409,6 +418,13 @@ pub(super) mod tests {
                         shear_runs,
                         2e-3,
                     );
+                }
+                // The rigid constraints between pinned nodes were skipped.
+                for (bend, lambda) in bends.iter().zip(&bend_lambdas) {
+                    assert!(bend.3 != 0.0 || *lambda == bend_start, "seed {seed}");
+                }
+                for (shear, lambda) in shear.iter().zip(&shear_lambdas) {
+                    assert!(shear.3 != 0.0 || *lambda == shear_start, "seed {seed}");
                 }
                 let mut bits: Vec<u32> = x
                     .iter()
