@@ -19,13 +19,18 @@ impl ParticleCloth {
         let (rows, columns) = (self.grid.rows, self.grid.columns);
         let p = &self.positions;
         normals.clear();
-        normals.extend((0..rows * columns).map(|i| {
-            let (k, j) = (i / columns, i % columns);
-            let along =
-                p[k * columns + (j + 1).min(columns - 1)] - p[k * columns + j.saturating_sub(1)];
-            let up = p[k.saturating_sub(1) * columns + j] - p[(k + 1).min(rows - 1) * columns + j];
-            let n = along.cross(up).normalize_or_zero();
-            if n.is_finite() { n } else { Vec3::ZERO }
+        normals.extend((0..rows).flat_map(|k| {
+            let (above, below) = (
+                k.saturating_sub(1) * columns,
+                (k + 1).min(rows - 1) * columns,
+            );
+            let row = k * columns;
+            (0..columns).map(move |j| {
+                let along = p[row + (j + 1).min(columns - 1)] - p[row + j.saturating_sub(1)];
+                let up = p[above + j] - p[below + j];
+                let n = along.cross(up).normalize_or_zero();
+                if n.is_finite() { n } else { Vec3::ZERO }
+            })
         }));
     }
 

@@ -32,13 +32,18 @@ impl Screen {
         scratch.resize(2 * rows.max(columns), 0.0);
         if let Some(a) = Line::new(0, 1, columns, self.along_rows, self.free_rows).factors(scratch)
         {
+            // The rows side by side, so that their recurrences overlap.
             let (inverse, upper) = scratch.split_at(columns);
             for line in values.chunks_exact_mut(columns) {
                 line[0] *= inverse[0];
-                for j in 1..columns {
+            }
+            for j in 1..columns {
+                for line in values.chunks_exact_mut(columns) {
                     line[j] = (line[j] + a * line[j - 1]) * inverse[j];
                 }
-                for j in (0..columns - 1).rev() {
+            }
+            for j in (0..columns - 1).rev() {
+                for line in values.chunks_exact_mut(columns) {
                     line[j] -= upper[j] * line[j + 1];
                 }
             }
