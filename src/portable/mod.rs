@@ -58,3 +58,26 @@ pub fn widest_lanes() -> usize {
 
 #[cfg(test)]
 mod tests;
+
+/// Σ a b in a fixed order: the products go eight at a time into eight running sums of type `S`
+/// (f32 or f64, given by `widen`: eight chains of additions side by side rather than one), those
+/// of the last `a.len() % 8` into an f64 sum, and the eight are added to it in f64.
+pub(crate) fn dot<S>(a: &[f32], b: &[f32], widen: impl Fn(f32) -> S) -> f64
+where
+    S: Copy + Default + std::ops::AddAssign + Into<f64>,
+{
+    let mut sums = [S::default(); 8];
+    let (chunks_a, chunks_b) = (a.chunks_exact(8), b.chunks_exact(8));
+    let tail: f64 = chunks_a
+        .remainder()
+        .iter()
+        .zip(chunks_b.remainder())
+        .map(|(x, y)| f64::from(x * y))
+        .sum();
+    for (x, y) in chunks_a.zip(chunks_b) {
+        for k in 0..8 {
+            sums[k] += widen(x[k] * y[k]);
+        }
+    }
+    tail + sums.iter().map(|s| (*s).into()).sum::<f64>()
+}

@@ -12,6 +12,7 @@
 //! energy out.
 
 use super::screen::Screen;
+use crate::portable::dot;
 
 /// Conjugate-gradient iterations per substep, at most: the system is I + h × (the pressure's
 /// damping rate) once preconditioned, one or two for a flag in a breeze.
@@ -65,11 +66,10 @@ pub(super) fn smoothed_pressure(
     for i in 0..n {
         s.r[i] = lift[i].sqrt() * s.g[i] * relative[i];
     }
-    let dot = |a: &[f32], b: &[f32]| a.iter().zip(b).map(|(x, y)| f64::from(x * y)).sum::<f64>();
     s.z.copy_from_slice(&s.r);
     screen.smooth(&mut s.z, &mut s.line);
     s.p.copy_from_slice(&s.z);
-    let first = dot(&s.r, &s.z);
+    let first = dot(&s.r, &s.z, f64::from);
     let mut rz = first;
     for _ in 0..MOST_ITERATIONS {
         if !(rz > TOLERANCE * first && rz.is_finite()) {
@@ -80,7 +80,7 @@ pub(super) fn smoothed_pressure(
         for i in 0..n {
             s.q[i] += reach[i] * s.g[i] * lift[i] * s.p[i];
         }
-        let pq = dot(&s.p, &s.q);
+        let pq = dot(&s.p, &s.q, f64::from);
         if !(pq > 0.0 && pq.is_finite()) {
             break;
         }
@@ -91,7 +91,7 @@ pub(super) fn smoothed_pressure(
         }
         s.z.copy_from_slice(&s.r);
         screen.smooth(&mut s.z, &mut s.line);
-        let next = dot(&s.r, &s.z);
+        let next = dot(&s.r, &s.z, f64::from);
         let beta = (next / rz) as f32;
         rz = next;
         for i in 0..n {

@@ -125,7 +125,7 @@ impl ParticleCloth {
         self.shear_lambdas.fill(0.0);
         self.bend_lambdas.fill(Vec3::ZERO);
         let mut strain = 0.0;
-        for _ in 0..self.iterations.clamp(1, ParticleCloth::MAX_ITERATIONS) {
+        for sweep in 0..self.iterations.clamp(1, ParticleCloth::MAX_ITERATIONS) {
             project_bending(
                 x,
                 inertia,
@@ -142,8 +142,9 @@ impl ParticleCloth {
                 &self.shear_runs,
                 h,
             );
-            for _ in 0..MOST_LINEARISATIONS {
-                self.yarns.project(x, inertia);
+            for linearisation in 0..MOST_LINEARISATIONS {
+                let warm = (sweep == 0 && linearisation == 0).then_some(h);
+                self.yarns.project(x, inertia, warm);
                 project_tethers(x, inertia, &self.tethers);
                 strain = self.yarns.max_strain(x);
                 if strain <= STRETCH_TOLERANCE {

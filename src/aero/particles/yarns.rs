@@ -5,10 +5,15 @@
 //! by conjugate gradients preconditioned with its own grid lines (each row's and each column's
 //! edges form a tridiagonal block, factorised once by Thomas' algorithm): exact for an unsheared
 //! grid, whose rows and columns do not couple, and a few iterations where shear couples them.
+//! Each substep's first solve starts from the last one's multipliers (a flag's tension changes
+//! little from one substep to the next): a hanging flag's solve takes a third of the iterations
+//! of one from zero, a flapping flag's two thirds, to the same tolerance against the residual
+//! from zero.
 
 use bevy::math::Vec3;
 
 use super::constraints::{Inertia, finite, gather};
+use crate::portable::dot;
 use crate::portable::geometry::V3;
 use crate::portable::lane::Lane;
 
@@ -40,24 +45,6 @@ enum Source {
     Lambda,
 }
 
-/// Σ a b, in f64 sums of f32 products taken eight at a time.
-fn dot(a: &[f32], b: &[f32]) -> f64 {
-    let mut sums = [0.0f32; 8];
-    let (chunks_a, chunks_b) = (a.chunks_exact(8), b.chunks_exact(8));
-    let tail: f64 = chunks_a
-        .remainder()
-        .iter()
-        .zip(chunks_b.remainder())
-        .map(|(x, y)| f64::from(x * y))
-        .sum();
-    for (x, y) in chunks_a.zip(chunks_b) {
-        for k in 0..8 {
-            sums[k] += x[k] * y[k];
-        }
-    }
-    tail + sums.iter().map(|s| f64::from(*s)).sum::<f64>()
-}
-
 /// Conjugate-gradient iterations per projection, at most.
 const MOST_ITERATIONS: usize = 12;
 /// The iterations stop once the residual has fallen by this factor (in the preconditioned
@@ -65,14 +52,18 @@ const MOST_ITERATIONS: usize = 12;
 /// so it is made small against the substep's own correction, not against the edge.
 const TOLERANCE: f64 = 1e-2;
 
-/// The edges of a `rows × columns` grid: along each row (row by row), then along each column
-/// (column by column), with their rest lengths and the solver's work space.
+/// The edges of a `rows × columns` grid, with their rest lengths and the solver's work space:
+/// the rows' edges, then the columns', each family's lines side by side (a family's j-th edges
+/// of all its lines one after another: a row's j-th edge at j · rows + row, a column's k-th at
+/// rows (columns − 1) + k · columns + column), so that the lines' recurrences run over
+/// contiguous edges.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Yarns {
     rows: usize,
     columns: usize,
     /// Each edge's nodes, and the two families of equal lines lying one after another (the
-    /// rows, the columns) as (first edge, edges per line, lines).
+    /// rows, the columns) as (first edge, edges per line, lines): a line's next edge is `lines`
+    /// further on.
     ends: Vec<(u32, u32)>,
     families: [(u32, u32, u32); 2],
     rest: Vec<f32>,
@@ -89,6 +80,9 @@ pub(super) struct Yarns {
     p: Vec<f32>,
     q: Vec<f32>,
     push: Vec<Vec3>,
+    /// The multipliers of the last warm-started projection and its substep (0: none yet).
+    warm: Vec<f32>,
+    warm_step: f32,
     pub(super) solves: YarnSolves,
 }
 
@@ -96,13 +90,14 @@ impl Yarns {
     /// The yarns of a `rows × columns` grid at `positions`, their rest lengths.
     pub(super) fn new(rows: usize, columns: usize, positions: &[Vec3]) -> Self {
         let mut ends = Vec::new();
-        for (count, stride, lanes, step) in
-            [(columns, 1, rows, columns), (rows, columns, columns, 1)]
-        {
-            for lane in 0..lanes {
-                let first = lane * step;
-                ends.extend((0..count - 1).map(|j| {
-                    let a = first + j * stride;
+        // (edges a line, lines, a line's first node, the step along a line).
+        for (length, lines, line_step, stride) in [
+            (columns - 1, rows, columns, 1),
+            (rows - 1, columns, 1, columns),
+        ] {
+            for j in 0..length {
+                ends.extend((0..lines).map(|line| {
+                    let a = line * line_step + j * stride;
                     (a as u32, (a + stride) as u32)
                 }));
             }
@@ -137,6 +132,8 @@ impl Yarns {
             p: vec![0.0; count],
             q: vec![0.0; count],
             push: vec![Vec3::ZERO; rows * columns],
+            warm: vec![0.0; count],
+            warm_step: 0.0,
             solves: YarnSolves::default(),
         }
     }
@@ -150,8 +147,12 @@ impl Yarns {
             .fold(0.0, f32::max)
     }
 
-    /// Projects `x` onto the yarns' rest lengths (one linearisation).
-    pub(super) fn project(&mut self, x: &mut [Vec3], inertia: Inertia) {
+    /// Projects `x` onto the yarns' rest lengths (one linearisation). With `warm`, the
+    /// substep's length, the solve starts from the multipliers of the last warm-started
+    /// projection scaled by (h / h_then)² (a steady tension T gives λ = h² T), and those it
+    /// finds are kept for the next: the first projection of a substep; later ones (what is left
+    /// of the constraints) start from zero.
+    pub(super) fn project(&mut self, x: &mut [Vec3], inertia: Inertia, warm: Option<f32>) {
         let count = self.rest.len();
         let lanes = count - count % 4;
         for first in (0..lanes).step_by(4) {
@@ -162,24 +163,21 @@ impl Yarns {
         }
         // The lines' blocks (a line's last edge couples to nothing) and their factors.
         for &(first, length, count) in &self.families {
-            let (first, length) = (first as usize, length as usize);
-            for line in 0..count as usize {
-                let last = first + (line + 1) * length - 1;
-                for j in first + line * length..last {
-                    let shared = self.ends[j].1 as usize;
-                    self.off[j] =
-                        -inertia.product(shared, self.direction[j], self.direction[j + 1]);
-                }
-                self.off[last] = 0.0;
+            let (first, length, count) = (first as usize, length as usize, count as usize);
+            let last = first + (length - 1) * count;
+            for i in first..last {
+                let shared = self.ends[i].1 as usize;
+                self.off[i] =
+                    -inertia.product(shared, self.direction[i], self.direction[i + count]);
             }
+            self.off[last..last + count].fill(0.0);
         }
         for &(first, length, count) in &self.families {
             let (first, length, count) = (first as usize, length as usize, count as usize);
             for j in 0..length {
-                for line in 0..count {
-                    let i = first + line * length + j;
+                for i in first + j * count..first + (j + 1) * count {
                     let below = if j > 0 {
-                        self.off[i - 1] * self.upper[i - 1]
+                        self.off[i - count] * self.upper[i - count]
                     } else {
                         0.0
                     };
@@ -197,7 +195,15 @@ impl Yarns {
                 }
             }
         }
-        self.solve(inertia);
+        let scale = match warm {
+            Some(h) if self.warm_step > 0.0 => (h / self.warm_step).powi(2),
+            _ => 0.0,
+        };
+        self.solve(inertia, scale);
+        if let Some(h) = warm {
+            self.warm.copy_from_slice(&self.lambda);
+            self.warm_step = h;
+        }
         // Δx = W Jᵀ λ.
         self.gather(inertia, Source::Lambda);
         for (x, dx) in x.iter_mut().zip(&self.push) {
@@ -237,16 +243,40 @@ impl Yarns {
         }
     }
 
-    /// λ ≈ A⁻¹ r, A = J W Jᵀ, by conjugate gradients from zero (r is overwritten; see
-    /// [`TOLERANCE`]).
-    fn solve(&mut self, inertia: Inertia) {
+    /// λ ≈ A⁻¹ r, A = J W Jᵀ, by conjugate gradients from `scale` times the kept multipliers
+    /// (r is overwritten; see [`TOLERANCE`], taken against the residual from zero so that a
+    /// warm start is never less accurate than a cold one).
+    fn solve(&mut self, inertia: Inertia, scale: f32) {
         let count = self.rest.len();
-        self.lambda.fill(0.0);
         self.precondition();
+        let first = dot(&self.r, &self.z, |p| p);
+        let enough = first * TOLERANCE * TOLERANCE;
+        let warm = scale > 0.0 && scale.is_finite();
+        if warm {
+            // λ₀ on the edges that are solved (a degenerate or held edge has no direction).
+            for ((l, w), d) in self.lambda.iter_mut().zip(&self.warm).zip(&self.direction) {
+                let l0 = scale * w;
+                *l = if *d != Vec3::ZERO && l0.is_finite() {
+                    l0
+                } else {
+                    0.0
+                };
+            }
+            self.p.copy_from_slice(&self.lambda);
+            self.multiply(inertia);
+            for (r, q) in self.r.iter_mut().zip(&self.q) {
+                *r -= q;
+            }
+            self.precondition();
+        } else {
+            self.lambda.fill(0.0);
+        }
         self.p.copy_from_slice(&self.z);
-        let mut rz = dot(&self.r, &self.z);
-        let first = rz;
-        let enough = rz * TOLERANCE * TOLERANCE;
+        let mut rz = if warm {
+            dot(&self.r, &self.z, |p| p)
+        } else {
+            first
+        };
         let mut iterations = 0;
         for _ in 0..MOST_ITERATIONS {
             if !(rz > enough && rz.is_finite()) {
@@ -254,7 +284,7 @@ impl Yarns {
             }
             iterations += 1;
             self.multiply(inertia);
-            let pq = dot(&self.p, &self.q);
+            let pq = dot(&self.p, &self.q, |p| p);
             if !(pq > 0.0 && pq.is_finite()) {
                 break;
             }
@@ -264,7 +294,7 @@ impl Yarns {
                 self.r[e] -= alpha * self.q[e];
             }
             self.precondition();
-            let next = dot(&self.r, &self.z);
+            let next = dot(&self.r, &self.z, |p| p);
             let beta = (next / rz) as f32;
             rz = next;
             for e in 0..count {
@@ -285,26 +315,45 @@ impl Yarns {
     }
 
     /// z = P⁻¹ r, P the lines' blocks: each family's lines (the rows, the columns) swept side by
-    /// side, so that their recurrences run at once.
+    /// side, their j-th edges contiguous, so that their recurrences run at once in SIMD lanes.
     fn precondition(&mut self) {
         for &(first, length, count) in &self.families {
             let (first, length, count) = (first as usize, length as usize, count as usize);
-            let at = |line: usize, j: usize| first + line * length + j;
-            for line in 0..count {
-                let i = at(line, 0);
-                self.z[i] = self.r[i] * self.inverse_pivot[i];
+            let edges = first..first + length * count;
+            let (r, z) = (&self.r[edges.clone()], &mut self.z[edges.clone()]);
+            let (off, inverse_pivot) =
+                (&self.off[edges.clone()], &self.inverse_pivot[edges.clone()]);
+            let upper = &self.upper[edges];
+            for ((z, r), d) in z[..count]
+                .iter_mut()
+                .zip(&r[..count])
+                .zip(&inverse_pivot[..count])
+            {
+                *z = r * d;
             }
             for j in 1..length {
-                for line in 0..count {
-                    let i = at(line, j);
-                    self.z[i] =
-                        (self.r[i] - self.off[i - 1] * self.z[i - 1]) * self.inverse_pivot[i];
+                let (before, after) = z.split_at_mut(j * count);
+                let (below, z) = (&before[(j - 1) * count..], &mut after[..count]);
+                let at = j * count..(j + 1) * count;
+                let coupling = &off[(j - 1) * count..j * count];
+                for (((z, r), (o, below)), d) in z
+                    .iter_mut()
+                    .zip(&r[at.clone()])
+                    .zip(coupling.iter().zip(below))
+                    .zip(&inverse_pivot[at])
+                {
+                    *z = (r - o * below) * d;
                 }
             }
             for j in (0..length - 1).rev() {
-                for line in 0..count {
-                    let i = at(line, j);
-                    self.z[i] -= self.upper[i] * self.z[i + 1];
+                let (before, after) = z.split_at_mut((j + 1) * count);
+                let (z, above) = (&mut before[j * count..], &after[..count]);
+                for ((z, u), above) in z
+                    .iter_mut()
+                    .zip(&upper[j * count..(j + 1) * count])
+                    .zip(above)
+                {
+                    *z -= u * above;
                 }
             }
         }
@@ -330,16 +379,17 @@ impl Yarns {
         for k in 0..rows {
             for j in 0..columns {
                 let mut f = Vec3::ZERO;
-                let row = k * (columns - 1) + j;
+                // The row's edges before and after node (k, j), then the column's.
+                let row = j * rows + k;
                 if j > 0 {
-                    f += d[row - 1] * values[row - 1];
+                    f += d[row - rows] * values[row - rows];
                 }
                 if j + 1 < columns {
                     f -= d[row] * values[row];
                 }
-                let column = row_edges + j * (rows - 1) + k;
+                let column = row_edges + k * columns + j;
                 if k > 0 {
-                    f += d[column - 1] * values[column - 1];
+                    f += d[column - columns] * values[column - columns];
                 }
                 if k + 1 < rows {
                     f -= d[column] * values[column];
@@ -378,8 +428,7 @@ mod tests {
                     *p + Vec3::new(r(3 * i as u64), r(3 * i as u64 + 1), r(3 * i as u64 + 2)) * 0.03
                 })
                 .collect();
-            // Extremes: an edge of zero length (the 8th, from node 8 to 9), a NaN, a node far
-            // off.
+            // Extremes: an edge of zero length (from node 8 to 9), a NaN, a node far off.
             x[9] = x[8];
             if seed % 2 == 0 {
                 x[20].z = f32::NAN;
@@ -418,10 +467,16 @@ mod tests {
             };
             assert_eq!(bits(&lanes), bits(&one), "seed {seed}");
             // Both ends pinned (the pole's yarn) or degenerate: left as they are.
-            let pole = rows * (columns - 1);
+            let edge = |a: u32, b: u32| one.ends.iter().position(|e| *e == (a, b)).unwrap();
+            let pole = edge(0, columns as u32);
             assert_eq!((one.direction[pole], one.diagonal[pole]), (Vec3::ZERO, 1.0));
-            assert_eq!((one.direction[7], one.diagonal[7]), (Vec3::ZERO, 1.0));
-            assert!(one.diagonal[1] > 0.0 && one.direction[1].is_normalized());
+            let short = edge(8, 9);
+            assert_eq!(
+                (one.direction[short], one.diagonal[short]),
+                (Vec3::ZERO, 1.0)
+            );
+            let free = edge(1, 2);
+            assert!(one.diagonal[free] > 0.0 && one.direction[free].is_normalized());
         }
     }
 }
