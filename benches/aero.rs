@@ -152,6 +152,7 @@ fn faces(c: &mut Criterion) {
         ..WindConfig::default()
     })
     .unwrap();
+    let field = &breeze;
     let breeze = |p: Vec3| breeze.velocity(p + Vec3::new(0.0, 5.0, 0.0));
     let mut plain = PlainCloth::new(36, 24, 1.5, 1.0, 0.15);
     let mut physical = ParticleCloth::new(
@@ -175,6 +176,21 @@ fn faces(c: &mut Criterion) {
         b.iter(|| {
             physical.step(DT, gravity, &breeze);
             black_box(physical.positions()[0])
+        })
+    });
+    // The same flag reading the wind for all its nodes at once (`step_batched` with
+    // `WindField::velocities`, as the `PhysicalCloth` plugin does: the same bits).
+    let mut batched = physical.clone();
+    let mut lifted = Vec::new();
+    let mut read = |nodes: &[Vec3], velocities: &mut Vec<Vec3>| {
+        lifted.clear();
+        lifted.extend(nodes.iter().map(|p| *p + Vec3::new(0.0, 5.0, 0.0)));
+        field.velocities(&lifted, velocities);
+    };
+    group.bench_function("flag_step_36x24_8ms/physical_particles_batched_wind", |b| {
+        b.iter(|| {
+            batched.step_batched(DT, gravity, &mut read);
+            black_box(batched.positions()[0])
         })
     });
     // The same flag with the longest tick a cloth takes (4 ms, `ParticleCloth::LONGEST_TICK`):

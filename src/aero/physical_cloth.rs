@@ -177,6 +177,7 @@ pub(super) fn step_cloths(
     time: Res<Time>,
     frame: Option<Res<FrameCount>>,
     mut budget: Local<FrameBudget>,
+    mut world: Local<Vec<Vec3>>,
 ) {
     let dt = budget.take(frame.map(|f| f.0), time.delta_secs());
     let wind = wind.as_deref();
@@ -200,13 +201,23 @@ pub(super) fn step_cloths(
         }
         let inverse = affine.inverse();
         let gravity = inverse.transform_vector3(Vec3::new(0.0, -9.81, 0.0));
-        // Sampled at the node's world position, turned into the local frame.
-        let local_wind = |p: Vec3| match wind {
-            Some(w) => inverse.transform_vector3(w.velocity(affine.transform_point3(p))),
-            None => Vec3::ZERO,
+        // Read at the nodes' world positions all at once, turned into the local frame.
+        let local_wind = |points: &[Vec3], velocities: &mut Vec<Vec3>| match wind {
+            Some(w) => {
+                world.clear();
+                world.extend(points.iter().map(|p| affine.transform_point3(*p)));
+                w.velocities(&world, velocities);
+                for v in velocities.iter_mut() {
+                    *v = inverse.transform_vector3(*v);
+                }
+            }
+            None => {
+                velocities.clear();
+                velocities.resize(points.len(), Vec3::ZERO);
+            }
         };
         if dt > 0.0 {
-            state.0.step(dt, gravity, &local_wind);
+            state.0.step_batched(dt, gravity, local_wind);
         }
     }
 }

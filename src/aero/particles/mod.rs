@@ -153,6 +153,8 @@ pub struct ParticleCloth {
     pressure: Vec<f32>,
     pressure_scratch: pressure::PressureScratch,
     wind: Vec<Vec3>,
+    /// The last batch of wind read (see [`ParticleCloth::step_batched`]).
+    wind_read: Vec<Vec3>,
     /// Milliseconds since the wind was last sampled.
     wind_age: u32,
     shear_lambdas: Vec<f32>,
@@ -337,6 +339,7 @@ impl ParticleCloth {
             pressure: vec![0.0; n],
             pressure_scratch: pressure::PressureScratch::default(),
             wind: vec![Vec3::ZERO; n],
+            wind_read: Vec::with_capacity(n),
             wind_age: u32::MAX,
             force: Vec3::ZERO,
             owed: 0.0,
@@ -453,6 +456,24 @@ impl ParticleCloth {
     /// as it is (the plugin reports such a cloth with
     /// [`PhysicalClothInvalid`](super::physical_cloth::PhysicalClothInvalid)).
     pub fn step(&mut self, dt: f32, gravity: Vec3, wind: &impl Fn(Vec3) -> Vec3) {
+        self.step_batched(dt, gravity, |points, velocities| {
+            velocities.clear();
+            velocities.extend(points.iter().map(|p| wind(*p)));
+        });
+    }
+
+    /// [`ParticleCloth::step`] with the wind read for every node at once: `wind(points,
+    /// velocities)` fills `velocities` with the fluid's velocity at each of `points` (local
+    /// frame), in order; a velocity missing or not finite counts as still air. A batch lets a
+    /// field read its points side by side, as
+    /// [`WindField::velocities`](crate::wind::WindField::velocities) does with the bits of its
+    /// point read (the [`PhysicalCloth`](super::physical_cloth::PhysicalCloth) plugin reads so).
+    pub fn step_batched(
+        &mut self,
+        dt: f32,
+        gravity: Vec3,
+        mut wind: impl FnMut(&[Vec3], &mut Vec<Vec3>),
+    ) {
         if !(dt.is_finite() && dt > 0.0 && gravity.is_finite()) {
             return;
         }
@@ -474,8 +495,9 @@ impl ParticleCloth {
         self.force = Vec3::ZERO;
         for _ in 0..count as u32 {
             if self.wind_age >= interval {
-                for (u, p) in self.wind.iter_mut().zip(&self.positions) {
-                    let w = wind(*p);
+                wind(&self.positions, &mut self.wind_read);
+                for (i, u) in self.wind.iter_mut().enumerate() {
+                    let w = self.wind_read.get(i).copied().unwrap_or(Vec3::ZERO);
                     *u = if w.is_finite() { w } else { Vec3::ZERO };
                 }
                 self.wind_age = 0;

@@ -30,6 +30,13 @@ impl WindField {
         self.sample(position, f64::from(time))
     }
 
+    /// [`Self::velocity`] for many points, at the field's own clock: `out` is cleared and
+    /// filled in order, four points at a time in SIMD lanes, with the bits
+    /// [`Self::velocity`] gives each point.
+    pub fn velocities(&self, positions: &[Vec3], out: &mut Vec<Vec3>) {
+        self.read_many(positions, self.time, out);
+    }
+
     /// [`Self::velocity_at`] for many points: `out` is cleared and filled in order, four
     /// points at a time in SIMD lanes (the log law, the interpolation and the mean wind), with
     /// the bits [`Self::velocity_at`] gives each point.
