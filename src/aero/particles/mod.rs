@@ -464,7 +464,8 @@ impl ParticleCloth {
 
     /// [`ParticleCloth::step`] with the wind read for every node at once: `wind(points,
     /// velocities)` fills `velocities` with the fluid's velocity at each of `points` (local
-    /// frame), in order; a velocity missing or not finite counts as still air. A batch lets a
+    /// frame), in order (it is handed over empty); a velocity missing or not finite counts as
+    /// still air. A batch lets a
     /// field read its points side by side, as
     /// [`WindField::velocities`](crate::wind::WindField::velocities) does with the bits of its
     /// point read (the [`PhysicalCloth`](super::physical_cloth::PhysicalCloth) plugin reads so).
@@ -495,6 +496,7 @@ impl ParticleCloth {
         self.force = Vec3::ZERO;
         for _ in 0..count as u32 {
             if self.wind_age >= interval {
+                self.wind_read.clear();
                 wind(&self.positions, &mut self.wind_read);
                 for (i, u) in self.wind.iter_mut().enumerate() {
                     let w = self.wind_read.get(i).copied().unwrap_or(Vec3::ZERO);
@@ -570,13 +572,15 @@ impl ParticleCloth {
         (start.force, start.undone) = (self.force, self.undone);
     }
 
-    /// Puts the cloth back as [`Self::save_tick`] kept it.
+    /// Puts the cloth back as [`Self::save_tick`] kept it; the yarns' next solve starts from
+    /// zero.
     fn restore_tick(&mut self) {
         let start = &self.tick_start;
         self.positions.copy_from_slice(&start.positions);
         self.velocities.copy_from_slice(&start.velocities);
         self.normals.copy_from_slice(&start.normals);
         (self.force, self.undone) = (start.force, start.undone);
+        self.yarns.forget();
     }
 
     /// Puts the nodes back where the last substep found them, at rest (see [`STRETCH_LIMIT`]).
@@ -586,6 +590,7 @@ impl ParticleCloth {
         let mut normals = std::mem::take(&mut self.normals);
         self.normals_into(&mut normals);
         self.normals = normals;
+        self.yarns.forget();
         self.undone += 1;
     }
 }

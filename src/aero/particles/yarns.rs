@@ -6,9 +6,10 @@
 //! edges form a tridiagonal block, factorised once by Thomas' algorithm): exact for an unsheared
 //! grid, whose rows and columns do not couple, and a few iterations where shear couples them.
 //! Each substep's first solve starts from the last one's multipliers (a flag's tension changes
-//! little from one substep to the next): a hanging flag's solve takes a third of the iterations
-//! of one from zero, a flapping flag's two thirds, to the same tolerance against the residual
-//! from zero.
+//! little from one substep to the next), or from zero where that start is worse: a hanging
+//! flag's solve takes two fifths of the iterations of one from zero, a flapping flag's two
+//! thirds (and one product and preconditioning more to start), to the same bound, a share of the
+//! residual from zero.
 
 use bevy::math::Vec3;
 
@@ -34,7 +35,7 @@ pub struct YarnSolves {
     /// Pivots of the lines' tridiagonal blocks that were not positive and finite (the edge was
     /// then preconditioned alone): 0 unless rounding breaks the blocks' positive definiteness.
     pub guarded_pivots: u64,
-    /// The last solve's residual relative to its start, in the preconditioned norm.
+    /// The last solve's residual relative to the residual from zero, in the preconditioned norm.
     pub last_residual: f32,
 }
 
@@ -47,8 +48,8 @@ enum Source {
 
 /// Conjugate-gradient iterations per projection, at most.
 const MOST_ITERATIONS: usize = 12;
-/// The iterations stop once the residual has fallen by this factor (in the preconditioned
-/// norm): the part of the constraints left unsolved turns into velocity at the next substep,
+/// The iterations stop once the residual is this share of the residual from zero (in the
+/// preconditioned norm), whichever start they took: the part of the constraints left unsolved turns into velocity at the next substep,
 /// so it is made small against the substep's own correction, not against the edge.
 const TOLERANCE: f64 = 1e-2;
 
@@ -83,6 +84,8 @@ pub(super) struct Yarns {
     /// The multipliers of the last warm-started projection and its substep (0: none yet).
     warm: Vec<f32>,
     warm_step: f32,
+    /// The residual from zero, kept while a warm start is tried.
+    start: Vec<f32>,
     pub(super) solves: YarnSolves,
 }
 
@@ -134,8 +137,14 @@ impl Yarns {
             push: vec![Vec3::ZERO; rows * columns],
             warm: vec![0.0; count],
             warm_step: 0.0,
+            start: vec![0.0; count],
             solves: YarnSolves::default(),
         }
+    }
+
+    /// The next solve starts from zero (the kept multipliers belong to a substep undone).
+    pub(super) fn forget(&mut self) {
+        self.warm_step = 0.0;
     }
 
     /// Largest |length / rest − 1| over the edges.
@@ -161,7 +170,29 @@ impl Yarns {
         for e in lanes..count {
             self.linearise::<f32>(x, inertia, e);
         }
-        // The lines' blocks (a line's last edge couples to nothing) and their factors.
+        self.factorise(inertia);
+        let scale = match warm {
+            Some(h) if self.warm_step > 0.0 => (h / self.warm_step).powi(2),
+            _ => 0.0,
+        };
+        self.solve(inertia, scale);
+        if let Some(h) = warm {
+            self.warm.copy_from_slice(&self.lambda);
+            self.warm_step = h;
+        }
+        // Δx = W Jᵀ λ.
+        self.gather(inertia, Source::Lambda);
+        for (x, dx) in x.iter_mut().zip(&self.push) {
+            if dx.is_finite() {
+                *x += *dx;
+            }
+        }
+    }
+
+    /// The lines' tridiagonal blocks at the linearised edges (a line's last edge couples to
+    /// nothing) and their Thomas factors; a pivot that is not positive and finite leaves its
+    /// edge preconditioned alone.
+    fn factorise(&mut self, inertia: Inertia) {
         for &(first, length, count) in &self.families {
             let (first, length, count) = (first as usize, length as usize, count as usize);
             let last = first + (length - 1) * count;
@@ -193,22 +224,6 @@ impl Yarns {
                         self.upper[i] = 0.0;
                     }
                 }
-            }
-        }
-        let scale = match warm {
-            Some(h) if self.warm_step > 0.0 => (h / self.warm_step).powi(2),
-            _ => 0.0,
-        };
-        self.solve(inertia, scale);
-        if let Some(h) = warm {
-            self.warm.copy_from_slice(&self.lambda);
-            self.warm_step = h;
-        }
-        // Δx = W Jᵀ λ.
-        self.gather(inertia, Source::Lambda);
-        for (x, dx) in x.iter_mut().zip(&self.push) {
-            if dx.is_finite() {
-                *x += *dx;
             }
         }
     }
@@ -243,9 +258,9 @@ impl Yarns {
         }
     }
 
-    /// λ ≈ A⁻¹ r, A = J W Jᵀ, by conjugate gradients from `scale` times the kept multipliers
-    /// (r is overwritten; see [`TOLERANCE`], taken against the residual from zero so that a
-    /// warm start is never less accurate than a cold one).
+    /// λ ≈ A⁻¹ r, A = J W Jᵀ, by conjugate gradients from `scale` times the kept multipliers,
+    /// or from zero where that start leaves a larger residual than zero does (r is overwritten;
+    /// see [`TOLERANCE`]: both starts stop at the same bound, the residual from zero's share).
     fn solve(&mut self, inertia: Inertia, scale: f32) {
         let count = self.rest.len();
         self.precondition();
@@ -262,21 +277,31 @@ impl Yarns {
                     0.0
                 };
             }
+            self.start.copy_from_slice(&self.r);
             self.p.copy_from_slice(&self.lambda);
             self.multiply(inertia);
             for (r, q) in self.r.iter_mut().zip(&self.q) {
                 *r -= q;
             }
             self.precondition();
-        } else {
+        }
+        let (mut rz, mut from_zero) = (first, !warm);
+        if warm {
+            rz = dot(&self.r, &self.z, |p| p);
+            if matches!(
+                rz.partial_cmp(&first),
+                None | Some(std::cmp::Ordering::Greater)
+            ) {
+                // A start worse than zero (the tension changed, or a NaN): from zero instead.
+                self.r.copy_from_slice(&self.start);
+                self.precondition();
+                (rz, from_zero) = (first, true);
+            }
+        }
+        if from_zero {
             self.lambda.fill(0.0);
         }
         self.p.copy_from_slice(&self.z);
-        let mut rz = if warm {
-            dot(&self.r, &self.z, |p| p)
-        } else {
-            first
-        };
         let mut iterations = 0;
         for _ in 0..MOST_ITERATIONS {
             if !(rz > enough && rz.is_finite()) {
@@ -406,11 +431,9 @@ mod tests {
     use super::*;
     use crate::aero::particles::constraints::tests::{normals_and_betas, unit};
 
-    #[test]
-    fn edges_linearised_in_lanes_have_the_bits_of_one_at_a_time() {
-        let (rows, columns) = (5, 7);
-        let n = rows * columns;
-        let rest: Vec<Vec3> = (0..n)
+    /// A flat `rows × columns` grid of 0.1 m cells, row-major, hanging down from y = 0.
+    fn flat_grid(rows: usize, columns: usize) -> Vec<Vec3> {
+        (0..rows * columns)
             .map(|i| {
                 Vec3::new(
                     (i % columns) as f32 * 0.1,
@@ -418,7 +441,83 @@ mod tests {
                     0.0,
                 )
             })
-            .collect();
+            .collect()
+    }
+
+    /// The preconditioner solves each line's tridiagonal block: P z = r, with P's diagonal and
+    /// its coupling between a line's consecutive edges, on grids whose lines are one edge long
+    /// (2 × N, N × 2) and longer.
+    #[test]
+    fn the_lines_preconditioner_inverts_their_blocks() {
+        for (seed, (rows, columns)) in [(2, 5), (5, 2), (4, 6), (3, 3), (7, 4)]
+            .into_iter()
+            .enumerate()
+        {
+            let r = |i: usize| unit(seed as u64 * 104_729 + i as u64);
+            let n = rows * columns;
+            let rest = flat_grid(rows, columns);
+            let x: Vec<Vec3> = rest
+                .iter()
+                .enumerate()
+                .map(|(i, p)| *p + Vec3::new(r(3 * i), r(3 * i + 1), r(3 * i + 2)) * 0.02)
+                .collect();
+            let (normals, beta) = normals_and_betas(n, |i| unit(seed as u64 * 31 + i));
+            let inverse_mass: Vec<f32> = (0..n)
+                .map(|i| {
+                    if i % columns == 0 {
+                        0.0
+                    } else {
+                        10.0 + 10.0 * r(7 * n + i).abs()
+                    }
+                })
+                .collect();
+            let inertia = Inertia {
+                inverse_mass: &inverse_mass,
+                normals: &normals,
+                beta: &beta,
+            };
+            let mut yarns = Yarns::new(rows, columns, &rest);
+            let count = yarns.rest.len();
+            for e in 0..count {
+                yarns.linearise::<f32>(&x, inertia, e);
+            }
+            yarns.factorise(inertia);
+            assert_eq!(yarns.solves.guarded_pivots, 0);
+            for e in 0..count {
+                yarns.r[e] = r(11 * n + e);
+            }
+            yarns.precondition();
+            for &(first, length, lines) in &yarns.families {
+                let (first, length, lines) = (first as usize, length as usize, lines as usize);
+                for j in 0..length {
+                    for line in 0..lines {
+                        let i = first + j * lines + line;
+                        let mut pz = yarns.diagonal[i] * yarns.z[i];
+                        if j > 0 {
+                            pz += yarns.off[i - lines] * yarns.z[i - lines];
+                        }
+                        if j + 1 < length {
+                            pz += yarns.off[i] * yarns.z[i + lines];
+                            // The coupling is between the edges sharing a node.
+                            assert_eq!(yarns.ends[i].1, yarns.ends[i + lines].0);
+                        }
+                        // |r| < 1: an absolute bound.
+                        assert!(
+                            (pz - yarns.r[i]).abs() <= 1e-4,
+                            "{rows} x {columns}, edge {i}: {pz} against {}",
+                            yarns.r[i]
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn edges_linearised_in_lanes_have_the_bits_of_one_at_a_time() {
+        let (rows, columns) = (5, 7);
+        let n = rows * columns;
+        let rest = flat_grid(rows, columns);
         for seed in 0..20u64 {
             let r = |i: u64| unit(seed * 7_919 + i);
             let mut x: Vec<Vec3> = rest
