@@ -8,7 +8,6 @@ use super::model::FallModel;
 use super::store::Store;
 use super::store::block::{ConstantStorage, FallConstants, PerFallConstants};
 use super::store::cold::FallStart;
-use super::store::pose::LeafPose;
 use super::store::view::FallView;
 use crate::lod::LodTiers;
 
@@ -40,8 +39,6 @@ pub struct FallStore {
     /// The entity of each handle.
     entities: Vec<Option<Entity>>,
     handles: EntityHashMap<u32>,
-    /// Each handle's shown pose, refreshed once per frame.
-    pub(crate) poses: Vec<LeafPose>,
 }
 
 impl Default for FallStore {
@@ -50,7 +47,6 @@ impl Default for FallStore {
             falls: Store::new(PerFallConstants),
             entities: Vec::new(),
             handles: EntityHashMap::default(),
-            poses: Vec::new(),
         }
     }
 }

@@ -154,25 +154,27 @@ fn take_lod(
     }
 }
 
-/// Poses every object: its fall's shown pose at the frame's share of the fixed step (in lanes,
-/// in the store), written to its transform.
+/// Poses every object: its fall's shown pose at the frame's share of the fixed step, taken in
+/// the query's pass (one lane wide: the bits the store's lanes give) and written to its
+/// transform; in parallel batches only when the compute pool has more than one thread.
 fn pose_objects(
-    mut store: ResMut<FallStore>,
+    store: Res<FallStore>,
     mut objects: Query<(&FallState, &mut Transform)>,
     schedule: Option<Res<crate::schedule::WindfallSchedule>>,
     time: Option<Res<Time<Fixed>>>,
 ) {
     let s = crate::schedule::overstep(schedule.as_deref(), time.as_deref());
-    let store = &mut *store;
-    let clock = store.falls.clock;
-    let now = clock.seconds + f64::from(s * clock.last_dt);
-    let pool = ComputeTaskPool::try_get().map(|p| &**p);
-    store.falls.poses(now, pool, &mut store.poses);
-    let poses = &store.poses;
-    objects.par_iter_mut().for_each(|(state, mut transform)| {
-        if let Some(pose) = state.handle.and_then(|h| poses.get(h as usize)) {
+    let falls = &store.falls;
+    let now = falls.clock.seconds + f64::from(s * falls.clock.last_dt);
+    let pose = |(state, mut transform): (&FallState, Mut<Transform>)| {
+        if let Some(pose) = state.handle.and_then(|h| falls.pose(h, now)) {
             transform.translation = pose.position;
             transform.rotation = pose.rotation;
         }
-    });
+    };
+    if ComputeTaskPool::try_get().is_some_and(|p| p.thread_num() > 1) {
+        objects.par_iter_mut().for_each(pose);
+    } else {
+        objects.iter_mut().for_each(pose);
+    }
 }

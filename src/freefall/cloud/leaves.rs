@@ -322,4 +322,64 @@ mod tests {
             }
         }
     }
+
+    /// A fall's pose taken alone (as the entity plugin takes it, in its query's pass) has the
+    /// bits the lanes give it, at every share of a step: in every band, while a motion change
+    /// blends, while a change of tier eases.
+    #[test]
+    fn a_pose_taken_alone_has_the_bits_the_lanes_give() {
+        let model = FallModel::default();
+        let cloud = LeafCloud {
+            count: 300,
+            seed: 9,
+            lod: LodTiers {
+                near: 8.0,
+                far: 16.0,
+            },
+            ..LeafCloud::default()
+        };
+        let mut leaves = cloud.leaves(&model, -1.0e6).unwrap();
+        let field = WindField::new(crate::wind::WindConfig::default()).unwrap();
+        let mut all = Vec::new();
+        let (mut checked, mut eased) = (0, 0);
+        for frame in 0..240 {
+            // The focus jumps between the cloud and far away every half second: every leaf
+            // changes tier, and eases when it comes back to full detail.
+            let x = if (frame / 30) % 2 == 0 { 0.0 } else { 1.0e3 };
+            let step = Step {
+                model: &model,
+                air: Air::Field(&field),
+                focus: Some(Focus::from(Vec3::new(x, 5.0, 0.0))),
+                width: crate::portable::lane_width(),
+                recycle_after: None,
+            };
+            leaves.store.step(1.0 / 60.0, &step, None);
+            let store = &leaves.store;
+            for s in [0.0, 0.37, 1.0] {
+                let now = store.clock.seconds + f64::from(s * store.clock.last_dt);
+                store.poses(now, None, &mut all);
+                for (h, lanes) in all.iter().enumerate() {
+                    let alone = store.pose(h as u32, now).unwrap();
+                    let bits = |p: &LeafPose| {
+                        let (x, q) = (p.position, p.rotation);
+                        [x.x, x.y, x.z, q.x, q.y, q.z, q.w].map(f32::to_bits)
+                    };
+                    assert_eq!(bits(&alone), bits(lanes), "fall {h} at {now} s");
+                    checked += 1;
+                }
+            }
+            // Falls whose change of tier still eases at the step's end.
+            let now = store.clock.seconds;
+            eased += store.bands[..crate::freefall::store::BANDS]
+                .iter()
+                .flat_map(|b| &b.cold)
+                .filter(|c| c.easing.as_deref().is_some_and(|e| e.end > now))
+                .count();
+        }
+        assert_eq!(checked, 300 * 240 * 3);
+        assert!(
+            eased > 100,
+            "only {eased} poses eased: the test would not see the easing"
+        );
+    }
 }
