@@ -483,8 +483,12 @@ fn the_finest_yarns_hold_for_ten_seconds() {
 /// +2.4 %, frequency −0.3 %, drag −2.3 %); 4 ms ticks swing +6.0 % and +6.1 % (frequency −0.9 %,
 /// drag +0.4 % / −2.2 %), the yarns stretched 1.9 % against 0.1–0.5 % at 1 ms. Relinearising
 /// the yarns down to 0.5 % instead of 2 % takes the stretch to 0.5 % but leaves the swing at
-/// +4.7 % / +7.0 %: the longer tick's dynamics, not its stretch. Five minutes with the release
-/// build on two cores: run by hand.
+/// +4.7 % / +7.0 %: the longer tick's dynamics, not its stretch. Two other suspects measured
+/// and ruled out: the constraint sweeps raised with the tick (one a millisecond, so the shear's
+/// compliance against the yarns' projection is the same per second) leave the swing at +4.6 % /
+/// +6.5 %; the air's pressure taken at the substep's midpoint velocity instead of its end
+/// (second order for the air's damping) at +6.0 % / +6.8 %. Two to five minutes with the
+/// release build on two cores: run by hand.
 #[test]
 #[ignore = "not met at 4 ms: swing +6.0 % (8 m/s) and +6.1 % (12 m/s) off 1 ms over 180 s; 2 ms met"]
 fn ticks_give_the_same_flag() {
