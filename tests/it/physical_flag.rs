@@ -487,8 +487,11 @@ fn the_finest_yarns_hold_for_ten_seconds() {
 /// and ruled out: the constraint sweeps raised with the tick (one a millisecond, so the shear's
 /// compliance against the yarns' projection is the same per second) leave the swing at +4.6 % /
 /// +6.5 %; the air's pressure taken at the substep's midpoint velocity instead of its end
-/// (second order for the air's damping) at +6.0 % / +6.8 %. Two to five minutes with the
-/// release build on two cores: run by hand.
+/// (second order for the air's damping) at +6.0 % / +6.8 %; the normals' turn rule applied in
+/// four sub-turns a substep at +5.8 % / +7.5 %. Without the turn rule (the normal velocity left
+/// as it is when the normals turn) 4 ms ticks swing +25 % / +23 % and 2 ms +9 % / +10 %: the
+/// rule removes three quarters of the tick's effect, and what is left is not its own turn's
+/// size. Two to five minutes with the release build on two cores: run by hand.
 #[test]
 #[ignore = "not met at 4 ms: swing +6.0 % (8 m/s) and +6.1 % (12 m/s) off 1 ms over 180 s; 2 ms met"]
 fn ticks_give_the_same_flag() {
