@@ -491,7 +491,9 @@ fn the_finest_yarns_hold_for_ten_seconds() {
 /// four sub-turns a substep at +5.8 % / +7.5 %. Without the turn rule (the normal velocity left
 /// as it is when the normals turn) 4 ms ticks swing +25 % / +23 % and 2 ms +9 % / +10 %: the
 /// rule removes three quarters of the tick's effect, and what is left is not its own turn's
-/// size. Two to five minutes with the release build on two cores: run by hand.
+/// size. Ticks between (the same runs): 1.5 ms +0.7 / +1.4 %, 2.5 ms +5.3 / +4.1 %, 3 ms +6.1 /
+/// +6.4 %, 3.33 ms +6.1 / +5.3 %: the swing grows about as the tick to 2.5–3 ms, then holds. One
+/// to five minutes with the release build on two cores: run by hand.
 #[test]
 #[ignore = "not met at 4 ms: swing +6.0 % (8 m/s) and +6.1 % (12 m/s) off 1 ms over 180 s; 2 ms met"]
 fn ticks_give_the_same_flag() {

@@ -25,6 +25,10 @@ const MAX_PIECES_PER_STEP: u32 = 64;
 const BLEND_SWINGS: f32 = 0.35;
 /// ... and at least this long, s, so a blend spans several frames of any frame rate.
 const MIN_BLEND: f32 = 0.15;
+/// A blend is summed in parts of at most this long, s (a step that spans more is cut into
+/// equal parts): its increments are weighted at each part's middle, so a distant leaf's
+/// longer steps sum it at the points a full-detail leaf's frames do.
+const BLEND_PART: f32 = 1.0 / 60.0;
 
 /// What a step did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -242,10 +246,15 @@ impl<K: ConstantStorage> Slot<'_, K> {
             let h = &self.block.hot;
             let (t, duration) = (h.t[k], h.duration[k]);
             let left = (duration - t).max(0.0);
-            let step = remaining.min(left);
+            let mut step = remaining.min(left);
+            if self.cold.previous.is_some() {
+                // Within a thousandth of a part counts as one (f32 frame times).
+                let parts = (step / BLEND_PART - 1e-3).ceil().max(1.0);
+                step /= parts;
+            }
             // To a swing's end: its last sample (the next piece's tilt follows); elsewhere the
             // piece sampled.
-            let crossing = remaining >= left;
+            let crossing = step >= left;
             let end = if crossing && h.curve[k] < 0.5 {
                 tilt = None;
                 kernel::swing_end(self.block, k, db)
