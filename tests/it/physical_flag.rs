@@ -492,8 +492,11 @@ fn the_finest_yarns_hold_for_ten_seconds() {
 /// as it is when the normals turn) 4 ms ticks swing +25 % / +23 % and 2 ms +9 % / +10 %: the
 /// rule removes three quarters of the tick's effect, and what is left is not its own turn's
 /// size. Ticks between (the same runs): 1.5 ms +0.7 / +1.4 %, 2.5 ms +5.3 / +4.1 %, 3 ms +6.1 /
-/// +6.4 %, 3.33 ms +6.1 / +5.3 %: the swing grows about as the tick to 2.5–3 ms, then holds. One
-/// to five minutes with the release build on two cores: run by hand.
+/// +6.4 %, 3.33 ms +6.1 / +5.3 %: the swing grows about as the tick to 2.5–3 ms, then holds
+/// (each tick one substep: none split). Also ruled out at 4 ms: the shear's one-sweep softening
+/// undone (+5.8 / +6.2 %), the turn rule's sign from m (v · n′) + m_a (v · n) (+6.4 / +6.3 %),
+/// a momentum-conserving turn (+15 %). One to five minutes with the release build on two cores:
+/// run by hand.
 #[test]
 #[ignore = "not met at 4 ms: swing +6.0 % (8 m/s) and +6.1 % (12 m/s) off 1 ms over 180 s; 2 ms met"]
 fn ticks_give_the_same_flag() {
