@@ -483,7 +483,7 @@ fn the_finest_yarns_hold_for_ten_seconds() {
 /// +2.4 %, frequency −0.3 %, drag −2.3 %); 4 ms ticks swing +6.0 % and +6.1 % (frequency −0.9 %,
 /// drag +0.4 % / −2.2 %), the yarns stretched 1.9 % against 0.1–0.5 % at 1 ms. Relinearising
 /// the yarns down to 0.5 % instead of 2 % takes the stretch to 0.5 % but leaves the swing at
-/// +4.7 % / +7.0 %: the longer tick's dynamics, not its stretch. Two other suspects measured
+/// +4.7 % / +7.0 %: the longer tick's dynamics, not its stretch. Three other suspects measured
 /// and ruled out: the constraint sweeps raised with the tick (one a millisecond, so the shear's
 /// compliance against the yarns' projection is the same per second) leave the swing at +4.6 % /
 /// +6.5 %; the air's pressure taken at the substep's midpoint velocity instead of its end
@@ -491,7 +491,7 @@ fn the_finest_yarns_hold_for_ten_seconds() {
 /// four sub-turns a substep at +5.8 % / +7.5 %. Without the turn rule (the normal velocity left
 /// as it is when the normals turn) 4 ms ticks swing +25 % / +23 % and 2 ms +9 % / +10 %: the
 /// rule removes three quarters of the tick's effect, and what is left is not its own turn's
-/// size. Ticks between (the same runs): 1.5 ms +0.7 / +1.4 %, 2.5 ms +5.3 / +4.1 %, 3 ms +6.1 /
+/// size. Ticks between (measured later, over the same 180 s): 1.5 ms +0.7 / +1.4 %, 2.5 ms +5.3 / +4.1 %, 3 ms +6.1 /
 /// +6.4 %, 3.33 ms +6.1 / +5.3 %: the swing grows about as the tick to 2.5–3 ms, then holds
 /// (each tick one substep: none split). Also ruled out at 4 ms: the shear's one-sweep softening
 /// undone (+5.8 / +6.2 %), the turn rule's sign from m (v · n′) + m_a (v · n) (+6.4 / +6.3 %),
