@@ -502,7 +502,13 @@ fn the_finest_yarns_hold_for_ten_seconds() {
 /// drag: 4 ms swing +3.7 / +0.3 % but drag −3.6 / −7.4 % (2 ms: +3.3 / +2.3 %, drag −1.7 /
 /// −2.5 %), and against its own 0.25 ms on 24 rows the default tick +6.6 % in swing, −5.6 % in
 /// drag; every normal of the substep so predicted changes the answer at 0.5 ms itself (0.32–0.43
-/// against 0.54 L). Neither was kept. The
+/// against 0.54 L). Neither was kept. Nor is it the pressure's implicit Euler: the pressure
+/// taken at the substep's midpoint (Crank–Nicolson, θ = ½, raised to 1 − 1/x where a node's
+/// x = h (L + K) / (m + m_a) passes 2, so that no normal velocity reverses) swings 0.544, 0.583
+/// and 0.607 L at 0.5, 2 and 4 ms (+7.2 and +11.6 %, against +9.2 and +12.2 % with the implicit
+/// Euler; 180 s). Without the turn rule (the velocity kept as it is when the normal turns) the
+/// flag flaps far narrower and the tick matters more: 0.325, 0.393 and 0.449 L (+21 and +38 %).
+/// The
 /// 180 s figure is not noise: a twin run in a wind 1e-5 faster moves the swing by −0.4 / −0.3 %
 /// (frequency and drag within 0.5 %). The 1 ms reference is not converged itself (0.5 ms ticks
 /// swing 4.9 / 4.7 % less): see `the_flag_converges_in_its_tick_on_every_grid`. Neither the
