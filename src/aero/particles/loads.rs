@@ -16,8 +16,12 @@ impl ParticleCloth {
     /// Each node's unit normal from its neighbours along the row and the column (one-sided at
     /// the edges; zero where the sheet is degenerate), on the side +Z is at rest.
     pub(super) fn normals_into(&self, normals: &mut Vec<Vec3>) {
+        self.normals_at(&self.positions, normals);
+    }
+
+    /// [`ParticleCloth::normals_into`] for the nodes at `p` instead of where they are.
+    pub(super) fn normals_at(&self, p: &[Vec3], normals: &mut Vec<Vec3>) {
         let (rows, columns) = (self.grid.rows, self.grid.columns);
-        let p = &self.positions;
         normals.clear();
         normals.extend((0..rows).flat_map(|k| {
             let (above, below) = (

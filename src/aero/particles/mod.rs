@@ -142,14 +142,18 @@ pub struct ParticleCloth {
     /// velocity are expressed with.
     normals: Vec<Vec3>,
     fresh_normals: Vec<Vec3>,
+    /// The nodes' normals where their velocities would take them over the substep, x + h v.
+    ahead_normals: Vec<Vec3>,
     /// Per node: the pressure's smoothed and local force rates and the skin-friction rate
     /// (kg/s), the normal velocity relative to the air before the pressure (m/s), the reach
-    /// h / (m + m_a) and the pressure's force of the substep (N).
+    /// h / (m + m_a), the reach the pressure's solve reads (the midpoint's θ h / (m + m_a))
+    /// and the pressure's force of the substep (N).
     lift_rate: Vec<f32>,
     drag_rate: Vec<f32>,
     friction: Vec<f32>,
     relative: Vec<f32>,
     reach: Vec<f32>,
+    midpoint_reach: Vec<f32>,
     pressure: Vec<f32>,
     pressure_scratch: pressure::PressureScratch,
     wind: Vec<Vec3>,
@@ -331,11 +335,13 @@ impl ParticleCloth {
             tick: ParticleCloth::SUBSTEP,
             normals: Vec::with_capacity(n),
             fresh_normals: Vec::with_capacity(n),
+            ahead_normals: Vec::with_capacity(n),
             lift_rate: vec![0.0; n],
             drag_rate: vec![0.0; n],
             friction: vec![0.0; n],
             relative: vec![0.0; n],
             reach: vec![0.0; n],
+            midpoint_reach: vec![0.0; n],
             pressure: vec![0.0; n],
             pressure_scratch: pressure::PressureScratch::default(),
             wind: vec![Vec3::ZERO; n],
