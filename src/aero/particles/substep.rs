@@ -38,8 +38,8 @@ impl ParticleCloth {
     /// stretch of a yarn edge it left.
     pub(super) fn substep(&mut self, h: f32, gravity: Vec3) -> f32 {
         let m = self.node_mass;
-        let pressure = self.reactive.is_none();
-        if pressure {
+        let by_pressure = self.reactive.is_none();
+        if by_pressure {
             // The normals where the velocities take the nodes (`previous` as scratch).
             for ((ahead, x), v) in self
                 .previous
@@ -71,7 +71,7 @@ impl ParticleCloth {
             let along = (m * (v_t + h * g_t) + h * c * u_t) / (m + h * c);
             let normal = v_n + h * g_n * m / (m + m_a);
             self.velocities[i] = along + n * normal;
-            let wind_n = if pressure {
+            let wind_n = if by_pressure {
                 u.dot((n + self.ahead_normals[i]).normalize_or(n))
             } else {
                 u_n
