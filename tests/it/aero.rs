@@ -519,7 +519,7 @@ fn a_hanging_flags_yarn_solves_start_from_its_tension() {
 
 /// Every yarn solve of a flag in a breeze reaches its tolerance within the iteration limit.
 #[test]
-#[ignore = "not met: 103 of 1000 solves stop at the 12-iteration limit (5.5 iterations a solve \
+#[ignore = "not met: 96 of 1000 solves stop at the 12-iteration limit (5.5 iterations a solve \
             on average with the warm start, 2 ms ticks; 245 and 8.5 from zero), measured with the \
             counters of physical_flag_reports_its_yarn_solves"]
 fn physical_flag_yarn_solves_reach_their_tolerance() {

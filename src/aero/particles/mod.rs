@@ -76,8 +76,9 @@ const MAX_NODE_MASS: f64 = 1e9;
 /// Each node has the mass m of its share of the cloth and, across the sheet, carries air: its
 /// inertia is M = m I + m_a n nᵀ (n its unit normal, from its neighbours; m_a a fraction of a
 /// flat plate's added mass for the node's area). Time advances in ticks of 2 ms
-/// ([`ParticleCloth::tick`], Macklin et al., "Small steps in physics simulation", 2019: 1 ms
-/// ticks give the same frequency, swing and drag within 4 % over 60 s, 4 ms ticks within 7 %),
+/// ([`ParticleCloth::tick`], Macklin et al., "Small steps in physics simulation", 2019: ticks
+/// of 1, 2 and 4 ms give the same frequency, swing and drag within 5 % over 180 s, so a game
+/// may take 4 ms ticks at about half the cost),
 /// each tick one substep (or 2, 4 … [`ParticleCloth::MAX_SUBSTEPS`] while the yarns could not be
 /// held within 2 % of their lengths; a tick that leaves an edge more than 4 % long is simulated
 /// again in twice the substeps), each substep:
@@ -86,10 +87,11 @@ const MAX_NODE_MASS: f64 = 1e9;
 ///    along the normal), written p = (l + k) w with w = v_rel · n and the rates
 ///    l = ½ ρ |v_rel| C_L cos²α (smoothed over the sheet) and k = ½ ρ |v_rel| C_D sin α (local),
 ///    frozen over the substep: with L = A l and K = A k (A the node's area) the node's force is
-///    A p = √L S(√L w') + K w', w' the velocity at the end of the substep and S a screened
-///    filter over a quarter of the smaller side (in potential flow the pressure on a wave of
-///    wavenumber k falls as 1/|k|; past the sides across the yarns from the pins it falls to
-///    zero). Both shares only take energy out of the motion relative to the air.
+///    A p = √L S(√L w') + K w', w' the velocity at the substep's midpoint (Crank–Nicolson) and
+///    S a screened filter over a quarter of the smaller side (in potential flow the pressure on
+///    a wave of wavenumber k falls as 1/|k|; past the sides across the yarns from the pins it
+///    falls to zero); the wind's share u · n is read along the normal halfway through the
+///    substep's turn. Both shares only take energy out of the motion relative to the air.
 /// 2. **Skin friction** ½ ρ C_f |v_t − u_t| (v_t − u_t) on each side, along the sheet, implicit.
 /// 3. **Velocities**: M (v' − v) = h (m g − A p n − c (v'_t − u_t)).
 /// 4. **Constraints** on x + h v', each projected with the same inverse inertia W = M⁻¹:

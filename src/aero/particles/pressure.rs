@@ -1,15 +1,17 @@
 //! The air's pressure on a particle cloth over a substep, implicit, as the force it puts on each
 //! node along its normal: F = √L ∘ S(√L ∘ w') + K ∘ w', with w' the nodes' normal velocities
-//! relative to the air at the end of the substep, L ≥ 0 and K ≥ 0 the smoothed and local force
+//! relative to the air where the solve reads them (the substep's midpoint or its end: it is
+//! handed the reach c that takes w* there), L ≥ 0 and K ≥ 0 the smoothed and local force
 //! rates (pressure rate × area) and S the screened filter of [`Screen`]. A free node's
-//! w' = w* − c F, c = h / (m + m_a) (0 where pinned), so w' = g ∘ (w* − c ∘ √L ∘ y) with
-//! g = 1 / (1 + c K) and y = S(√L ∘ w'): (T + diag(c g L)) y = √L ∘ g ∘ w*, T = S⁻¹, a symmetric
-//! positive definite system solved by conjugate gradients preconditioned with S.
+//! w' = w* − c F (c = 0 where pinned), so w' = g ∘ (w* − c ∘ √L ∘ y) with g = 1 / (1 + c K)
+//! and y = S(√L ∘ w'): (T + diag(c g L)) y = √L ∘ g ∘ w*, T = S⁻¹, a symmetric positive
+//! definite system solved by conjugate gradients preconditioned with S.
 //!
 //! Every conjugate-gradient iterate y (from zero) leaves a residual orthogonal to itself, so
-//! the smoothed force's power on the motion relative to the air is −yᵀ T y and the local one's
-//! −Σ K w'²: never positive, however few iterations are run. In still air the air only takes
-//! energy out.
+//! the force's product with the velocities it was solved at, Fᵀ w' = yᵀ T y + Σ K w'², is
+//! never negative, however few iterations are run; with the velocities moved by the full
+//! substep's reach from that point on or past it (θ ≥ ½), the air only takes energy out in
+//! still air.
 
 use super::screen::Screen;
 use crate::portable::dot;
