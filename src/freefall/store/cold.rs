@@ -208,7 +208,7 @@ impl Cold {
             // The same curve carries on from where it was.
             Some(Piece::Curve {
                 start, duration, ..
-            }) if old.is_some_and(|p| p.end_angle() == flip) && !self.curve_changed(&old) => {
+            }) if old.is_some_and(|p| p.end_angle() == flip && p.is_curve_of(self.motion)) => {
                 Piece::curve(
                     &self.scales,
                     self.motion,
@@ -222,20 +222,6 @@ impl Cold {
                 Piece::curve(&self.scales, self.motion, self.amplitude, phase, flip)
             }
         }
-    }
-
-    /// Whether the last piece was a curve of another motion.
-    fn curve_changed(&self, old: &Option<Piece>) -> bool {
-        let Some(Piece::Curve {
-            eccentricity,
-            lobes,
-            ..
-        }) = old
-        else {
-            return true;
-        };
-        let fresh = Piece::curve(&self.scales, self.motion, self.amplitude, 0.0, 0.0);
-        !matches!(fresh, Piece::Curve { eccentricity: e, lobes: l, .. } if e == *eccentricity && l == *lobes)
     }
 }
 

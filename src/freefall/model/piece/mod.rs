@@ -276,6 +276,14 @@ impl Piece {
             .quat()
     }
 
+    /// Whether this is eq. 6's curve in `motion`'s shape (its eccentricity and lobes, as
+    /// [`Piece::curve`] gives them), whatever its radius, phase and flip.
+    pub fn is_curve_of(&self, motion: PrimitiveMotion) -> bool {
+        let shape = MOTION_SHAPES[motion.index()];
+        matches!(*self, Self::Curve { eccentricity, lobes, .. }
+            if eccentricity == shape.eccentricity && lobes == shape.lobes)
+    }
+
     /// Plate angle at the end, about the heading frame's z (for a curve: its half-turns).
     pub fn end_angle(&self) -> f32 {
         match *self {
