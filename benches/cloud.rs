@@ -11,6 +11,7 @@
 //! Run: `cargo bench --bench cloud`. Figures are in the README's Performance section.
 
 use bevy_windfall::lod::LodTiers;
+use std::hint::black_box;
 use std::time::Duration;
 
 use bevy::math::Vec3;
@@ -202,6 +203,44 @@ fn cloud(c: &mut Criterion) {
         }
     }
     bevy_windfall::set_lanes(true);
+    // The rows above step the warmed cloud once. Its leaves were let go together and their
+    // pieces last about as long, so many cross a piece's end on the same step: step by step
+    // the cost is uneven (printed). Sixteen consecutive steps, one thread, eight lanes where
+    // there are (as the rows above): the mean a game's frames see is this row's time / 16.
+    let still = CloudStep {
+        wind: None,
+        ..step(&model, &wind, None)
+    };
+    let mut leaves = full.clone();
+    let times: Vec<String> = (0..16)
+        .map(|_| {
+            let start = std::time::Instant::now();
+            black_box(leaves.step(&still, None));
+            format!("{:.1}", start.elapsed().as_secs_f64() * 1e3)
+        })
+        .collect();
+    println!(
+        "cloud: 16 steps in still air, one thread, ms each: {}",
+        times.join(" ")
+    );
+    for (air, field) in [("with_wind", Some(&wind)), ("still_air", None)] {
+        let name = format!("leaf_cloud_{air}_one_thread_16_steps");
+        group.bench_function(name, |b| {
+            b.iter_batched_ref(
+                || full.clone(),
+                |leaves| {
+                    let step = CloudStep {
+                        wind: field,
+                        ..step(&model, &wind, None)
+                    };
+                    for _ in 0..16 {
+                        black_box(leaves.step(&step, None));
+                    }
+                },
+                BatchSize::LargeInput,
+            )
+        });
+    }
     group.bench_function("baseline_drag_particles_with_wind_one_thread", |b| {
         b.iter_batched_ref(
             || particles.clone(),
