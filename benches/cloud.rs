@@ -20,7 +20,8 @@ use bevy_windfall::freefall::cloud::{CloudLeaves, CloudStep};
 use bevy_windfall::freefall::{CloudRegion, FallModel, LeafCloud};
 use bevy_windfall::lod::{Focus, LodView};
 use bevy_windfall::wind::{WindConfig, WindField};
-use criterion::{BatchSize, Criterion, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{BatchSize, BenchmarkGroup, Criterion, criterion_main};
 
 const LEAVES: u32 = 100_000;
 const DT: f32 = 1.0 / 60.0;
@@ -62,6 +63,36 @@ fn step<'a>(model: &'a FallModel, wind: &'a WindField, focus: Option<Focus>) -> 
         dt: DT,
         wind_tilt: 0.6,
         focus,
+    }
+}
+
+/// Rows `leaf_cloud_{with_wind,still_air}_one_thread{suffix}`: `steps` consecutive steps of the
+/// warmed cloud `full` on this thread, in `wind` and in still air.
+fn one_thread_rows(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    full: &CloudLeaves,
+    model: &FallModel,
+    wind: &WindField,
+    steps: usize,
+    suffix: &str,
+) {
+    for (air, field) in [("with_wind", Some(wind)), ("still_air", None)] {
+        let name = format!("leaf_cloud_{air}_one_thread{suffix}");
+        group.bench_function(name, |b| {
+            b.iter_batched_ref(
+                || full.clone(),
+                |leaves| {
+                    let step = CloudStep {
+                        wind: field,
+                        ..step(model, wind, None)
+                    };
+                    for _ in 0..steps {
+                        black_box(leaves.step(&step, None));
+                    }
+                },
+                BatchSize::LargeInput,
+            )
+        });
     }
 }
 
@@ -185,62 +216,33 @@ fn cloud(c: &mut Criterion) {
     };
     for &(width, suffix) in widths {
         bevy_windfall::set_lane_width(width);
-        for (air, field) in [("with_wind", Some(&wind)), ("still_air", None)] {
-            let name = format!("leaf_cloud_{air}_one_thread{suffix}");
-            group.bench_function(name, |b| {
-                b.iter_batched_ref(
-                    || full.clone(),
-                    |leaves| {
-                        let step = CloudStep {
-                            wind: field,
-                            ..step(&model, &wind, None)
-                        };
-                        leaves.step(&step, None)
-                    },
-                    BatchSize::LargeInput,
-                )
-            });
-        }
+        one_thread_rows(&mut group, &full, &model, &wind, 1, suffix);
     }
     bevy_windfall::set_lanes(true);
-    // The rows above step the warmed cloud once. Its leaves were let go together and their
-    // pieces last about as long, so many cross a piece's end on the same step: step by step
-    // the cost is uneven (printed). Sixteen consecutive steps, one thread, eight lanes where
-    // there are (as the rows above): the mean a game's frames see is this row's time / 16.
+    // The rows above step the warmed cloud once. Step by step the cost varies with how many
+    // leaves cross a piece's end (printed). Sixteen consecutive steps, one thread, eight lanes
+    // where there are (as the rows above): the mean a game's frames see is this row's time / 16.
     let still = CloudStep {
         wind: None,
         ..step(&model, &wind, None)
     };
     let mut leaves = full.clone();
+    let pieces =
+        |leaves: &CloudLeaves| -> u64 { leaves.paths().map(|p| u64::from(p.markov_steps())).sum() };
     let times: Vec<String> = (0..16)
         .map(|_| {
+            let before = pieces(&leaves);
             let start = std::time::Instant::now();
             black_box(leaves.step(&still, None));
-            format!("{:.1}", start.elapsed().as_secs_f64() * 1e3)
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            format!("{ms:.1} ({} ends)", pieces(&leaves) - before)
         })
         .collect();
     println!(
-        "cloud: 16 steps in still air, one thread, ms each: {}",
+        "cloud: 16 steps in still air, one thread, ms each (the piece ends crossed): {}",
         times.join(" ")
     );
-    for (air, field) in [("with_wind", Some(&wind)), ("still_air", None)] {
-        let name = format!("leaf_cloud_{air}_one_thread_16_steps");
-        group.bench_function(name, |b| {
-            b.iter_batched_ref(
-                || full.clone(),
-                |leaves| {
-                    let step = CloudStep {
-                        wind: field,
-                        ..step(&model, &wind, None)
-                    };
-                    for _ in 0..16 {
-                        black_box(leaves.step(&step, None));
-                    }
-                },
-                BatchSize::LargeInput,
-            )
-        });
-    }
+    one_thread_rows(&mut group, &full, &model, &wind, 16, "_16_steps");
     group.bench_function("baseline_drag_particles_with_wind_one_thread", |b| {
         b.iter_batched_ref(
             || particles.clone(),

@@ -210,6 +210,7 @@ impl FallingObject {
             release,
             max_angle: self.wind_tilt,
             lod,
+            phase: 0.0,
         })
     }
 }

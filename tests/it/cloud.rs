@@ -623,3 +623,52 @@ fn a_single_leaf_of_a_tiered_cloud_advances_every_call() {
         }
     }
 }
+
+/// A cloud's leaves are already in the air when it is made: each starts at its own point of its
+/// swing, so their piece ends (a Markov step and a swing search each) come evenly, step after
+/// step, rather than together every swing time, forever (a game would see every eighth frame
+/// cost three). Counted from outside: the Markov steps 8 000 leaves take on each step of 3 s,
+/// after 2 s of falling (when they were let go together, half of them took one on the same step).
+#[test]
+fn a_clouds_piece_ends_come_evenly_step_after_step() {
+    let model = FallModel::default();
+    for preset in [
+        FallPreset::Leaf,
+        FallPreset::MapleLeaf,
+        FallPreset::PaperSheet,
+    ] {
+        let description = LeafCloud {
+            object: preset.object(),
+            region: CloudRegion {
+                min: Vec3::new(-20.0, 60.0, -20.0),
+                max: Vec3::new(20.0, 80.0, 20.0),
+            },
+            ..cloud(8_000, LodTiers::FULL)
+        };
+        let mut leaves = description.leaves(&model, 0.0).unwrap();
+        let still = step_in(&model, None, DT, None);
+        for _ in 0..120 {
+            leaves.step(&still, None);
+        }
+        let count = |leaves: &CloudLeaves| -> u64 {
+            leaves.paths().map(|p| u64::from(p.markov_steps())).sum()
+        };
+        let mut last = count(&leaves);
+        let mut crossings = Vec::new();
+        for _ in 0..180 {
+            leaves.step(&still, None);
+            let now = count(&leaves);
+            crossings.push(now - last);
+            last = now;
+        }
+        assert_eq!(leaves.resting(), 0, "{preset:?}: a leaf landed");
+        let mean = crossings.iter().sum::<u64>() as f64 / crossings.len() as f64;
+        let most = *crossings.iter().max().unwrap() as f64;
+        println!("{preset:?}: {mean:.0} piece ends a step on average, {most} at most");
+        assert!(mean > 100.0, "{preset:?}: {mean} piece ends a step");
+        assert!(
+            most <= 1.5 * mean,
+            "{preset:?}: {most} piece ends on one step, {mean:.0} on average"
+        );
+    }
+}

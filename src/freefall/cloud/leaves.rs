@@ -69,9 +69,10 @@ pub struct CloudLeaves {
 }
 
 impl CloudLeaves {
-    /// `count` leaves with the sizes `scales` and the chain `chain`, each let go at rest at a
-    /// point of `region` drawn from its own stream (the cloud's `seed` mixed with its index),
-    /// turned at random, above `ground`. The rest of the description: `lod`, `max_angle`
+    /// `count` leaves with the sizes `scales` and the chain `chain`, each let go at a point of
+    /// `region` drawn from its own stream (the cloud's `seed` mixed with its index), turned at
+    /// random, above `ground`, and already in the air: at its own point of its first swing
+    /// (so the leaves' piece ends come evenly, not all on the same steps). The rest of the description: `lod`, `max_angle`
     /// (eq. 15's W) and `recycle_after` (a leaf resting that long is let go again from the
     /// region's top).
     #[allow(clippy::too_many_arguments)]
@@ -106,7 +107,8 @@ impl CloudLeaves {
     }
 
     /// The `release`-th fall of leaf `index`: anywhere in the region (`top`: at its top), turned
-    /// at random, from a stream that depends only on the seed, the index and the release.
+    /// at random, at a point of its first piece drawn at random, from a stream that depends
+    /// only on the seed, the index and the release.
     fn start(&self, index: u32, release: u32, top: bool) -> FallStart {
         let mut rng = FallRng::new(leaf_seed(self.seed, index as usize, release));
         let (min, max) = (self.region.min, self.region.max);
@@ -121,6 +123,7 @@ impl CloudLeaves {
             rng.uniform() * std::f32::consts::TAU,
         )
         .quat();
+        let phase = rng.uniform();
         FallStart {
             scales: self.scales,
             chain: Arc::clone(&self.chain),
@@ -133,6 +136,7 @@ impl CloudLeaves {
             },
             max_angle: self.store.kind.0.max_angle,
             lod: Some(self.lod),
+            phase,
         }
     }
 

@@ -29,6 +29,10 @@ pub(crate) struct FallStart {
     /// Eq. 15's W, rad.
     pub max_angle: f32,
     pub lod: Option<LodTiers>,
+    /// How far into its first piece the fall begins, a fraction of the piece in [0, 1): 0 for a
+    /// fall let go at rest (a plate let go starts at a turning point of its swing); a cloud's
+    /// leaves, already in the air, each begin at their own.
+    pub phase: f32,
 }
 
 /// The piece before a motion change, while the change blends: its time and offset run on past

@@ -99,6 +99,7 @@ impl FallPath {
                 release,
                 max_angle: 0.0,
                 lod: None,
+                phase: 0.0,
             },
         );
         Self { store }

@@ -12,6 +12,7 @@ use crate::freefall::model::motion::Glide;
 use crate::freefall::model::release::{FallRelease, LIFT_OFF_HOP};
 use crate::freefall::store::block::{ConstantStorage, FallConstants};
 use crate::freefall::store::cold::{Cold, FallStart, ReleaseFade};
+use crate::freefall::store::kernel::sample_piece;
 use crate::portable::geometry::{Q, V3};
 use crate::portable::transcendental::atan2;
 
@@ -19,12 +20,14 @@ use crate::portable::transcendental::atan2;
 const RELEASE_SWINGS: f32 = 1.0;
 /// ... and at least this long, s.
 const MIN_RELEASE: f32 = 0.25;
+/// The latest a fall begins in its first piece, a fraction of it (it begins inside).
+const MAX_PHASE: f32 = 0.999;
 
 impl<K: ConstantStorage> Slot<'_, K> {
     /// Lets the fall go as `start` says, its clock at `clock` (its first step is then taken
     /// at once, over the time since): the chain's first motion, a heading from the seed (or
-    /// the release orientation's long axis), the first piece, the release orientation fading
-    /// into the synthesised one over a swing.
+    /// the release orientation's long axis), the first piece (begun `start.phase` into it),
+    /// the release orientation fading into the synthesised one over a swing.
     pub fn release(&mut self, model: &FallModel, start: &FallStart, clock: f64) {
         let db = model.database();
         let constants = FallConstants::new(
@@ -56,8 +59,20 @@ impl<K: ConstantStorage> Slot<'_, K> {
         let drift = finite(release.velocity);
         cold.enter_motion(motion);
         cold.piece = cold.build_piece(db, theta, 1.0, None);
-        let piece_tilt = cold.piece.tilt(db, 0.0);
-        let synthesised = Q::of(heading).mul(Q::of(piece_tilt));
+        // The fall begins `phase` into its first piece: its clock and offset there, the time
+        // since release still 0, the motion's sojourn counted from here.
+        let k = self.k;
+        let phase = if start.phase.is_finite() {
+            start.phase.clamp(0.0, MAX_PHASE)
+        } else {
+            0.0
+        };
+        let into = phase * cold.piece.duration();
+        cold.piece_start = -f64::from(into);
+        cold.sojourn += into;
+        self.block.write_piece(k, &cold.piece, db);
+        let (offset, piece_tilt) = sample_piece::<f32, K>(self.block, k, db, into);
+        let synthesised = Q::of(heading).mul(piece_tilt);
         let shown = match rotation {
             Some(q) => {
                 cold.release = Some(Box::new(ReleaseFade {
@@ -69,7 +84,6 @@ impl<K: ConstantStorage> Slot<'_, K> {
             }
             None => synthesised.quat(),
         };
-        let (k, piece) = (self.k, cold.piece);
         let h = &mut self.block.hot;
         for (column, value) in [
             (&mut h.p0x, position.x),
@@ -98,10 +112,10 @@ impl<K: ConstantStorage> Slot<'_, K> {
             (&mut h.sx, 0.0),
             (&mut h.sy, 0.0),
             (&mut h.sz, 0.0),
-            (&mut h.t, 0.0),
-            (&mut h.ox, 0.0),
-            (&mut h.oy, 0.0),
-            (&mut h.oz, 0.0),
+            (&mut h.t, into),
+            (&mut h.ox, offset.x),
+            (&mut h.oy, offset.y),
+            (&mut h.oz, offset.z),
             (&mut h.hc, heading.w),
             (&mut h.hs, heading.y),
             // The heading's full turn, for the increments: cos ψ, sin ψ from the half angle.
@@ -114,7 +128,6 @@ impl<K: ConstantStorage> Slot<'_, K> {
             column[k] = value;
         }
         self.block.updated[k] = clock;
-        self.block.write_piece(k, &piece, db);
         self.set_plain();
     }
 
@@ -141,6 +154,7 @@ impl<K: ConstantStorage> Slot<'_, K> {
             },
             max_angle: constants.max_angle,
             lod: constants.lod,
+            phase: 0.0,
         };
         let (time, markov_steps) = (self.time(), self.cold.markov_steps);
         let (updated, span) = (self.block.updated[k], self.block.hot.span[k]);
