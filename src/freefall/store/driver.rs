@@ -138,11 +138,28 @@ fn step_blocks<K: ConstantStorage>(
             break;
         }
         let live = (cold.len() - first).min(W);
-        // The next block's cache lines on their way while this one is stepped: a cloud of
-        // 100 000 leaves streams more bytes a step than the caches hold (docs/performance.md).
+        // Cache lines on their way while this block is stepped: a cloud of 100 000 leaves
+        // streams more bytes a step than the caches hold (docs/performance.md). The block two
+        // ahead; and the cold state of the next block's falls that will go one at a time (its
+        // block, asked for one block ago, is here to say which).
         #[cfg(target_arch = "x86_64")]
-        if let Some(next) = blocks.get(b + 1) {
-            crate::portable::avx::prefetch(next);
+        {
+            if b == 0
+                && let Some(next) = blocks.get(1)
+            {
+                crate::portable::avx::prefetch(next);
+            }
+            if let Some(ahead) = blocks.get(b + 2) {
+                crate::portable::avx::prefetch(ahead);
+            }
+            if let Some(next) = blocks.get(b + 1) {
+                let h = &next.hot;
+                for (j, cold) in cold.iter().skip(first + W).take(W).enumerate() {
+                    if h.plain[j] < 0.5 || h.t[j] + clock.last_dt >= h.duration[j] {
+                        crate::portable::avx::prefetch(cold);
+                    }
+                }
+            }
         }
         step_block(
             kind,
