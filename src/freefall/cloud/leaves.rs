@@ -72,9 +72,9 @@ impl CloudLeaves {
     /// `count` leaves with the sizes `scales` and the chain `chain`, each let go at a point of
     /// `region` drawn from its own stream (the cloud's `seed` mixed with its index), turned at
     /// random, above `ground`, and already in the air: at its own point of its first swing
-    /// (so the leaves' piece ends come evenly, not all on the same steps). The rest of the description: `lod`, `max_angle`
-    /// (eq. 15's W) and `recycle_after` (a leaf resting that long is let go again from the
-    /// region's top).
+    /// (so the leaves' piece ends come evenly, not all on the same steps). The rest of the
+    /// description: `lod`, `max_angle` (eq. 15's W) and `recycle_after` (a leaf resting that
+    /// long is let go again from the region's top).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         model: &FallModel,

@@ -141,7 +141,8 @@ fn step_blocks<K: ConstantStorage>(
         // Cache lines on their way while this block is stepped: a cloud of 100 000 leaves
         // streams more bytes a step than the caches hold (docs/performance.md). The block two
         // ahead; and the cold state of the next block's falls that will go one at a time (its
-        // block, asked for one block ago, is here to say which).
+        // block, asked for one block ago, is here to say which), over the time each waited (a
+        // tier's span, as `step_block` steps it).
         #[cfg(target_arch = "x86_64")]
         {
             if b == 0
@@ -155,7 +156,8 @@ fn step_blocks<K: ConstantStorage>(
             if let Some(next) = blocks.get(b + 1) {
                 let h = &next.hot;
                 for (j, cold) in cold.iter().skip(first + W).take(W).enumerate() {
-                    if h.plain[j] < 0.5 || h.t[j] + clock.last_dt >= h.duration[j] {
+                    let waited = (clock.seconds - next.updated[j]) as f32;
+                    if h.plain[j] < 0.5 || h.t[j] + waited >= h.duration[j] {
                         crate::portable::avx::prefetch(cold);
                     }
                 }
