@@ -637,7 +637,10 @@ fn reactive_runs(cases: &[(usize, f32)]) -> Vec<Run> {
 /// c = U m_a / (μ + m_a) ≈ 0.86 U, with nothing fitted, and are about twice its length
 /// (Raynaud & Mulleners: 1.87 L), at the Strouhal number of flags, on 24 and 32 rows at 8 m/s.
 /// Measured (60 s): 0.83 U and 1.98 L on 24 rows, 0.88 U and 1.99 L on 32 (f A / U 0.29 and
-/// 0.31); 48 rows (not run here, four times 24's time): 0.86 U, 1.83 L over 20 s.
+/// 0.31); 48 rows (not run here, four times 24's time): 0.86 U, 1.83 L over 20 s. These hold at
+/// the default 2 ms tick only: the reactive air does not converge in its tick, and its waves
+/// slow at finer ticks (0.69 U at 0.25 ms, 0.59 U at 0.125 ms; see
+/// `under_the_reactive_air_ticks_give_the_same_flag`).
 #[test]
 fn under_the_reactive_air_waves_run_at_the_speed_lighthills_force_gives() {
     for r in reactive_runs(&[(24, 8.0), (32, 8.0)]) {
@@ -718,4 +721,42 @@ fn the_flag_converges_in_its_tick_on_every_grid() {
         failures.push(report);
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The issue's tick check under the opt-in reactive air: ticks of 1, 2 and 4 ms give the same
+/// flag within 5 % (24 rows, 8 m/s, 60 s after 2 s: swing, frequency and drag against 1 ms).
+/// Measured: see the ignore. The error goes with the carried air's share of the nodes' normal
+/// inertia, not with the air's solve (docs/aero.md lists what was ruled out).
+#[test]
+#[ignore = "not met: swing 0.659 / 0.748 / 0.753 L at 1 / 2 / 4 ms (+14 %, +14 %), drag +12 % / +2 % \
+            (release, half a minute)"]
+fn under_the_reactive_air_ticks_give_the_same_flag() {
+    let runs: Vec<Run> = std::thread::scope(|scope| {
+        let handles: Vec<_> = [1e-3, 2e-3, 4e-3]
+            .map(|tick| {
+                scope.spawn(move || {
+                    let mut cloth = flag(24).with_reactive_air();
+                    cloth.tick = tick;
+                    record(&mut cloth, 8.0, 1.0 / 50.0, GRAVITY, (SETTLE, WINDOW))
+                })
+            })
+            .into_iter()
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    for r in &runs {
+        println!("{}", describe(r));
+    }
+    let reference = &runs[0];
+    for r in &runs[1..] {
+        let off = |a: f32, b: f32| (a / b - 1.0).abs();
+        assert!(
+            off(r.swing, reference.swing) <= 0.05
+                && off(r.stats.frequency, reference.stats.frequency) <= 0.05
+                && off(r.drag, reference.drag) <= 0.05,
+            "{} against {}",
+            describe(r),
+            describe(reference)
+        );
+    }
 }
