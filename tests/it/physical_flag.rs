@@ -725,9 +725,9 @@ fn the_flag_converges_in_its_tick_on_every_grid() {
 
 /// The issue's tick check under the opt-in reactive air: ticks of 1, 2 and 4 ms give the same
 /// flag within 5 % (24 rows, 8 m/s, 60 s after 2 s: swing, frequency and drag against 1 ms).
-/// Measured: see the ignore. The error goes with the air's momentum flux along the yarns: with
-/// the flux off the flag's swing barely moves from 0.5 to 0.125 ms (docs/aero.md lists what
-/// was ruled out).
+/// Measured: see the ignore. Without the air's momentum flux along the yarns the flag hardly
+/// flaps and its ticks agree; capping the flux's short waves does not close the gap
+/// (docs/aero.md lists what was ruled out).
 #[test]
 #[ignore = "not met: swing 0.659 / 0.748 / 0.753 L at 1 / 2 / 4 ms (+14 %, +14 %), drag +12 % / +2 % \
             (release, half a minute)"]
