@@ -145,7 +145,7 @@ pub fn particle_cloth(r: &mut Report) {
         "A 1.5 × 1 m flag of 0.15 kg/m² pinned along its pole column, in a uniform 8 m/s wind \
          from hanging still, stepped at 60 frames a second (any frame rate gives the same cloth: \
          each frame is simulated in whole ticks). What changes the answer is the tick (the \
-         substep's length, `ParticleCloth::tick`, 2 ms by default) and the grid. Ticks: a \
+         substep's length, `ParticleCloth::tick`, 4 ms by default) and the grid. Ticks: a \
          16-row flag, error the RMS node distance from the run with ticks of 0.25 ms over the \
          flag's width at 0.1 s (before flapping sets in; a flag in wind is unstable, so later \
          runs that differ by anything drift apart by the size of its flapping). Grids: ticks of \

@@ -224,7 +224,7 @@ pub(super) fn step_cloths(
 
 /// What one rendered frame may simulate of the cloths: [`ParticleCloth::MAX_STEP`] over all
 /// its fixed steps. After a hitch Bevy runs many fixed steps in one frame (up to its
-/// `Time<Virtual>` maximum of 0.25 s: 125 ticks of 2 ms); the cloths take the first
+/// `Time<Virtual>` maximum of 0.25 s: 62 ticks of 4 ms); the cloths take the first
 /// 50 ms of them and hold still through the rest (the time is dropped, not owed), so a hitch
 /// costs at most three frames' worth of cloth. The same rule holds every frame: a game running
 /// below 20 frames a second sees its physical cloths in slow motion (at 15 fps, 75 % speed).

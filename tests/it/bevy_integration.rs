@@ -631,7 +631,7 @@ fn idle_plugins_wake_for_what_comes_later_and_clear_what_goes() {
 
 /// A hitch: one rendered frame running 16 fixed steps (a quarter of a second at 64 Hz) moves a
 /// physical cloth by `ParticleCloth::MAX_STEP` (50 ms) only, the same cloth as three frames of
-/// one fixed step each (25 ticks of 2 ms either way), in a steady wind; the rest of the hitch is
+/// one fixed step each (12 ticks of 4 ms either way), in a steady wind; the rest of the hitch is
 /// dropped.
 #[test]
 fn a_hitch_costs_a_physical_cloth_three_frames_of_work() {

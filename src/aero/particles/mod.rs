@@ -75,10 +75,10 @@ const MAX_NODE_MASS: f64 = 1e9;
 ///
 /// Each node has the mass m of its share of the cloth and, across the sheet, carries air: its
 /// inertia is M = m I + m_a n nᵀ (n its unit normal, from its neighbours; m_a a fraction of a
-/// flat plate's added mass for the node's area). Time advances in ticks of 2 ms
+/// flat plate's added mass for the node's area). Time advances in ticks of 4 ms
 /// ([`ParticleCloth::tick`], Macklin et al., "Small steps in physics simulation", 2019: ticks
-/// of 1, 2 and 4 ms give the same frequency, swing and drag within 5 % over 180 s, so a game
-/// may take 4 ms ticks at about half the cost),
+/// of 1, 2 and 4 ms give the same frequency, swing and drag within 5 % over 180 s, so the
+/// default is the longest, at about half the cost of 2 ms),
 /// each tick one substep (or 2, 4 … [`ParticleCloth::MAX_SUBSTEPS`] while the yarns could not be
 /// held within 2 % of their lengths; a tick that leaves an edge more than 4 % long is simulated
 /// again in twice the substeps), each substep:
@@ -136,7 +136,7 @@ pub struct ParticleCloth {
     /// Fewest substeps per tick, used within 1..=[`ParticleCloth::MAX_SUBSTEPS`].
     pub min_substeps: u32,
     /// How long one tick of the simulation is, s: each is one substep or more (while the yarns
-    /// could not be held). [`ParticleCloth::SUBSTEP`] (2 ms) by default, used within
+    /// could not be held). [`ParticleCloth::SUBSTEP`] (4 ms) by default, used within
     /// [`ParticleCloth::SHORTEST_TICK`]..=[`ParticleCloth::LONGEST_TICK`]; a frame is simulated
     /// in whole ticks.
     pub tick: f32,
@@ -456,7 +456,7 @@ impl ParticleCloth {
     }
 
     /// Advances by `dt` under `gravity` in the fluid velocity `wind(p)` (local frame), in whole
-    /// ticks ([`ParticleCloth::tick`], 2 ms by default): what is left of `dt` (less than
+    /// ticks ([`ParticleCloth::tick`], 4 ms by default): what is left of `dt` (less than
     /// one) is simulated with the next step, and a step longer than [`ParticleCloth::MAX_STEP`] is
     /// simulated as that long. The wind is sampled every [`ParticleCloth::WIND_INTERVAL`]
     /// milliseconds (rounded to whole ticks). A substep that would stretch a yarn by more than half is undone
@@ -612,7 +612,7 @@ impl ParticleCloth {
     pub const MAX_SUBSTEPS: u32 = 16;
 
     /// The default tick ([`ParticleCloth::tick`]), s: the longest substep of a new cloth.
-    pub const SUBSTEP: f32 = 2e-3;
+    pub const SUBSTEP: f32 = 4e-3;
 
     /// The shortest tick a cloth takes, s.
     pub const SHORTEST_TICK: f32 = 2.5e-4;
@@ -621,7 +621,7 @@ impl ParticleCloth {
     pub const LONGEST_TICK: f32 = 4e-3;
 
     /// Longest step simulated, s: a longer one (a hitch) is simulated as this long, so a frame
-    /// costs at most three 60 Hz frames' worth of ticks (25 of the default 2 ms), however long
+    /// costs at most three 60 Hz frames' worth of ticks (12 of the default 4 ms), however long
     /// it took. The
     /// [`PhysicalCloth`](super::physical_cloth::PhysicalCloth) plugin holds each rendered frame to
     /// the same budget over all its fixed steps.
