@@ -771,3 +771,72 @@ fn under_the_reactive_air_ticks_give_the_same_flag() {
         );
     }
 }
+
+/// A wind rising steadily from 0.5 to 6 m/s over 110 s (0.05 m/s a second, slow beside a
+/// flapping period), after 20 s at 0.5 m/s, on `rows` rows: for each 10 s window its mean wind
+/// and the free edge's flapping, the peak-to-peak amplitude over L (2√2 times the standard
+/// deviation) of the middle yarn's free edge across the sheet at periods under 3 s (its offset
+/// less its 3 s running mean, which takes out a hanging flag's slow wandering and keeps a flap of
+/// 0.5 Hz or more).
+fn ramp(rows: usize) -> Vec<(f32, f32)> {
+    const WINDOW: f32 = 10.0;
+    const HANG: f32 = 20.0;
+    let (from, to, dt) = (0.5f32, 6.0f32, 1.0 / 50.0);
+    let rate = 0.05;
+    let mut cloth = flag(rows);
+    let columns = cloth.grid().columns;
+    let edge = rows / 2 * columns + columns - 1;
+    // Long enough at 0.5 m/s for the start's ripple to have died away.
+    for _ in 0..(HANG / dt).round() as usize {
+        cloth.step(dt, GRAVITY, &|_| Vec3::new(from, 0.0, 0.0));
+    }
+    let windows = ((to - from) / rate / WINDOW).round() as usize;
+    let steps = windows * (WINDOW / dt).round() as usize;
+    let z: Vec<f32> = (0..steps)
+        .map(|k| {
+            let wind = Vec3::new(from + rate * k as f32 * dt, 0.0, 0.0);
+            cloth.step(dt, GRAVITY, &|_| wind);
+            cloth.positions()[edge].z
+        })
+        .collect();
+    let half = (1.5 / dt).round() as usize;
+    let fast: Vec<f32> = (half..steps - half)
+        .map(|k| z[k] - z[k - half..=k + half].iter().sum::<f32>() / (2 * half + 1) as f32)
+        .collect();
+    let per_window = fast.len() / windows;
+    (0..windows)
+        .map(|w| {
+            let part = &fast[w * per_window..(w + 1) * per_window];
+            let mean = part.iter().sum::<f32>() / part.len() as f32;
+            let variance = part.iter().map(|x| (x - mean).powi(2)).sum::<f32>() / part.len() as f32;
+            let t = (half + (w * per_window) + per_window / 2) as f32 * dt;
+            (from + rate * t, 2.0 * 2f32.sqrt() * variance.sqrt() / WIDTH)
+        })
+        .collect()
+}
+
+/// The issue's onset: in a wind rising from 0.5 to 6 m/s a flag begins to flap between 2 and
+/// 4 m/s. Flapping: the free edge flaps at least 0.1 L peak to peak at periods under 3 s (a
+/// flag at 4–12 m/s flaps 0.4–0.6 L); the onset is the wind of the first 10 s window from which
+/// every later one flaps. Measured (release, the default 4 ms ticks): the 1.05–1.55 m/s window
+/// flaps 0.21 L on 24 rows (0.15 on 48, 0.28 on 32) where the 0.55–1.05 m/s one reads 0.08 L
+/// (0.08, 0.03), rising to 0.4–0.5 L by 5 m/s: the onset is about 1.3 m/s on every grid, the
+/// quasi-steady pressure's flutter of a drooping strip under 0.5–2 N/m (docs/aero.md).
+#[test]
+#[ignore = "not met: flapping begins at about 1.3 m/s on 24, 32 and 48 rows (0.15-0.28 L peak to \
+            peak in the 1.05-1.55 m/s window; target 2-4 m/s)"]
+fn flapping_begins_between_two_and_four_metres_a_second_in_a_rising_wind() {
+    let windows = ramp(24);
+    let mut onset = None;
+    for &(wind, amplitude) in &windows {
+        println!("{wind:.2} m/s: flapping {amplitude:.3} L peak to peak");
+        if amplitude >= 0.1 {
+            onset.get_or_insert(wind);
+        } else {
+            onset = None;
+        }
+    }
+    let onset = onset.expect("the flag flaps by 6 m/s");
+    println!("onset {onset:.2} m/s");
+    assert!((2.0..=4.0).contains(&onset), "onset {onset:.2} m/s");
+}
