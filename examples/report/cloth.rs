@@ -43,7 +43,7 @@ fn procedural(grid: ClothGrid, params: ClothParams, steps: f32, seconds: f32) ->
     recorder.finish()
 }
 
-/// The particle flag (2 ms ticks, the face law's pressure along the normal, 0.15 kg/m²) in a uniform wind, after 2 s
+/// The particle flag (its default 4 ms ticks, the face law's pressure along the normal, 0.15 kg/m²) in a uniform wind, after 2 s
 /// of settling, and its mean drag over the free-flag drag of AS/NZS 1170.2 Appendix F,
 /// C = 0.05 + 0.7 (m / (ρ c)) (A / c²)^−1.25 on ½ ρ U² A.
 fn physical(grid: ClothGrid, speed: f32, seconds: f32) -> (FlapStats, f32) {
@@ -257,7 +257,7 @@ fn procedural_against_physical(r: &mut Report) {
         &format!(
             "A 1.5 × 1 m flag, 16 yarns of 24 nodes, in a uniform wind for {seconds} s at 50 fps: \
              the P-descriptor `ClothSim` (Table 1's gentle frozen flag, |v| from the wind) and the \
-             `ParticleCloth` (2 ms ticks, implicit pressure along the normal, 0.15 kg/m², after 2 s of settling). \
+             `ParticleCloth` (4 ms ticks, implicit pressure along the normal, 0.15 kg/m², after 2 s of settling). \
              Literature for flags: waves travel at about the wind speed (Alben, simulations of \
              light flags; Raynaud & Mulleners 2026, 48 paper flags in a wind tunnel), with a \
              wavelength of about 1.9 L (Raynaud & Mulleners), so f L / U ≈ 0.5; flapping sheets \

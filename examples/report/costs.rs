@@ -21,7 +21,7 @@ pub fn report(r: &mut Report) {
         "Same object, same wind (a uniform 3 m/s breeze). The procedural leaf is a \
          `FallingObject`'s path (phase diagram, Markov chain, database); the physical one a \
          `RigidPlate` of 2 × 2 faces with lift and drag. The procedural flag is the P-type \
-         descriptor cloth (advance and rebuild); the physical one the particle cloth (2 ms \
+         descriptor cloth (advance and rebuild); the physical one the particle cloth (4 ms \
          ticks, the face law's pressure along each node's normal). The wind sampler is \
          compared with `noise::Fbm<Perlin>` (4 octaves, 3 components) at the same points.",
     );

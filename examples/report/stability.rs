@@ -343,7 +343,7 @@ fn cloth_rows(rows: &mut Vec<Vec<String>>) {
     }
     rows.push(o.row(
         "particle flag in a 70 m/s gale, dt = 0.25 s",
-        "2 ms ticks, implicit normal pressure, yarns solved together, attachments",
+        "4 ms ticks, implicit normal pressure, yarns solved together, attachments",
         "reach from the pin m",
         f64::from(grid.width + grid.height),
     ));

@@ -41,8 +41,8 @@
 //! unscreened one with the screen's correction on the right side.
 //!
 //! Opt-in ([`ParticleCloth::with_reactive_air`](super::ParticleCloth::with_reactive_air)) while
-//! it is measured: it gives a held sheet Jones' lift slope on any grid and, at the default
-//! tick, a flag's waves Lighthill's speed, but the flag swings too wide, does not hang in light
+//! it is measured: it gives a held sheet Jones' lift slope on any grid and, at ticks of 2 ms, a
+//! flag's waves Lighthill's speed, but the flag swings too wide, does not hang in light
 //! air, and does not converge in its tick: its swing and wave speed fall with each halving of
 //! the tick down to 0.125 ms (docs/aero.md).
 //!
