@@ -98,5 +98,5 @@ fn wind_speed(
     }
     let speed = wind.config().reference_speed;
     text.0 =
-        format!("wind {speed:.0} m/s (Up/Down)\nleft: procedural Cloth   right: PhysicalCloth");
+        format!("wind {speed:.1} m/s (Up/Down)\nleft: procedural Cloth   right: PhysicalCloth");
 }
