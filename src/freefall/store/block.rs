@@ -259,3 +259,25 @@ impl<K: ConstantStorage> Block<K> {
         self.row[k] = words.row;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::cold::Cold;
+    use super::*;
+
+    /// What a usual step reads and writes of a fall is its lanes of a block: at most 300 bytes a
+    /// fall (a cloud of 100 000 leaves streams more than the caches hold, so a step waits for
+    /// memory: docs/performance.md). The cold state is read only when a piece ends, a motion
+    /// changes or a fall lands; it stays under 256 bytes (four cache lines).
+    #[test]
+    fn a_usual_step_streams_at_most_300_bytes_a_fall() {
+        let shared = std::mem::size_of::<Block<SharedConstants>>() / W;
+        let own = std::mem::size_of::<Block<PerFallConstants>>() / W;
+        let cold = std::mem::size_of::<Cold>();
+        println!(
+            "a fall's lanes: {shared} bytes in a cloud, {own} as an entity; cold state {cold}"
+        );
+        assert!(shared <= 300 && own <= 300, "{shared} / {own} bytes a fall");
+        assert!(cold <= 256, "{cold} bytes of cold state");
+    }
+}
