@@ -629,9 +629,9 @@ fn idle_plugins_wake_for_what_comes_later_and_clear_what_goes() {
     );
 }
 
-/// A hitch: one rendered frame running 16 fixed steps (Bevy's largest, a quarter of a second at
-/// its default 64 Hz; 0.27 s at this app's 60 Hz) moves a physical cloth by
-/// `ParticleCloth::MAX_STEP` (50 ms) only, the same cloth as three frames of
+/// A hitch: one rendered frame asked for 16 fixed steps (at Bevy's default 64 Hz its largest, a
+/// quarter of a second; at this app's 60 Hz its 0.25 s `max_delta` runs 14 of them) moves a
+/// physical cloth by `ParticleCloth::MAX_STEP` (50 ms) only, the same cloth as three frames of
 /// one fixed step each (12 ticks of 4 ms either way), in a steady wind; the rest of the hitch is
 /// dropped.
 #[test]
@@ -661,7 +661,7 @@ fn a_hitch_costs_a_physical_cloth_three_frames_of_work() {
     let one = run(1, 1);
     assert_eq!(
         hitch, three,
-        "a 16-step frame moves the cloth as three frames do"
+        "a hitch's frame moves the cloth as three frames do"
     );
     assert_ne!(hitch, one);
 }

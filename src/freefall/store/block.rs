@@ -268,7 +268,7 @@ mod tests {
     /// What a usual step reads and writes of a fall is its lanes of a block: at most 300 bytes a
     /// fall (a cloud of 100 000 leaves streams more than the caches hold, so a step waits for
     /// memory: docs/performance.md). The cold state is read only when a piece ends, a motion
-    /// changes or a fall lands; it stays under 256 bytes (four cache lines).
+    /// changes, a fall lands, is let go or changes tier; it takes at most 256 bytes.
     #[test]
     fn a_usual_step_streams_at_most_300_bytes_a_fall() {
         let shared = std::mem::size_of::<Block<SharedConstants>>() / W;
